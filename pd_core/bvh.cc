@@ -1,0 +1,59 @@
+#include "pd_core/bvh.h"
+
+#include <algorithm>
+
+namespace pd {
+
+Bvh::Bvh(const TriangleMesh& mesh) {
+  const int n = mesh.num_triangles();
+  if (n == 0) return;
+  order_.resize(n);
+  std::vector<Vector3> centroids(n);
+  for (int t = 0; t < n; ++t) {
+    order_[t] = t;
+    const auto& tri = mesh.triangles[t];
+    centroids[t] = (mesh.vertices[tri[0]] + mesh.vertices[tri[1]] + mesh.vertices[tri[2]]) / 3.0;
+  }
+  nodes_.reserve(2 * n);
+  Build(mesh, centroids, 0, n, 1);
+  nodes_.shrink_to_fit();
+}
+
+// Top-down median split along the longest axis of the centroids' bounds:
+// O(n log n), balanced, so traversal stacks stay shallow.
+int Bvh::Build(const TriangleMesh& mesh, std::vector<Vector3>& centroids, int begin,
+               int end, int level) {
+  depth_ = std::max(depth_, level);
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  Vector3 lo = Vector3::Constant(1e300), hi = Vector3::Constant(-1e300);
+  Vector3 clo = lo, chi = hi;
+  for (int i = begin; i < end; ++i) {
+    const auto& tri = mesh.triangles[order_[i]];
+    for (int k = 0; k < 3; ++k) {
+      lo = lo.cwiseMin(mesh.vertices[tri[k]]);
+      hi = hi.cwiseMax(mesh.vertices[tri[k]]);
+    }
+    clo = clo.cwiseMin(centroids[order_[i]]);
+    chi = chi.cwiseMax(centroids[order_[i]]);
+  }
+  nodes_[index].center_M = 0.5 * (lo + hi);
+  nodes_[index].half_M = 0.5 * (hi - lo);
+  if (end - begin <= kMaxLeafTriangles) {
+    nodes_[index].right_or_first = begin;
+    nodes_[index].count = end - begin;
+    return index;
+  }
+  int axis = 0;
+  (chi - clo).maxCoeff(&axis);
+  const int mid = (begin + end) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](int32_t a, int32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+  Build(mesh, centroids, begin, mid, level + 1);
+  const int right = Build(mesh, centroids, mid, end, level + 1);
+  nodes_[index].right_or_first = right;
+  nodes_[index].count = 0;
+  return index;
+}
+
+}  // namespace pd

@@ -1,0 +1,44 @@
+#pragma once
+// Bounding-volume hierarchy over a mesh's triangles: axis-aligned boxes in the
+// mesh frame M, binary, nodes stored depth-first (left child = index + 1).
+// Pair queries test a node of one mesh against a node of the other as an
+// oriented box against an axis-aligned box (see box_overlap.h).
+#include <cstdint>
+#include <vector>
+
+#include "pd_core/mesh.h"
+
+namespace pd {
+
+struct BvhNode {
+  Vector3 center_M;  // box centre (m)
+  Vector3 half_M;    // box half extents (m)
+  int32_t right_or_first = 0;  // internal: right child; leaf: first slot in order()
+  int32_t count = 0;           // 0 for internal nodes, else triangles in the leaf
+  bool is_leaf() const { return count > 0; }
+};
+
+class Bvh {
+ public:
+  static constexpr int kMaxLeafTriangles = 2;
+  Bvh() = default;
+  explicit Bvh(const TriangleMesh& mesh);
+
+  const std::vector<BvhNode>& nodes() const { return nodes_; }
+  // Triangle indices in leaf order; a leaf holds order()[first .. first+count).
+  const std::vector<int32_t>& order() const { return order_; }
+  int depth() const { return depth_; }
+  bool empty() const { return nodes_.empty(); }
+  size_t MemoryBytes() const {
+    return nodes_.capacity() * sizeof(BvhNode) + order_.capacity() * sizeof(int32_t);
+  }
+
+ private:
+  int Build(const TriangleMesh& mesh, std::vector<Vector3>& centroids, int begin,
+            int end, int level);
+  std::vector<BvhNode> nodes_;
+  std::vector<int32_t> order_;
+  int depth_ = 0;
+};
+
+}  // namespace pd

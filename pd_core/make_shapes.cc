@@ -1,0 +1,244 @@
+#include "pd_core/make_shapes.h"
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pd {
+namespace {
+
+void Require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+
+bool Positive(double x) { return std::isfinite(x) && x > 0.0; }
+
+// Quad a-b-c-d counter-clockwise from outside, as two triangles.
+void AddQuad(TriangleMesh* mesh, int a, int b, int c, int d) {
+  mesh->triangles.emplace_back(a, b, c);
+  mesh->triangles.emplace_back(a, c, d);
+}
+
+// Closed tube over a periodic grid: vertex (i, j) = i * cols + j, rows and
+// columns both wrap. Cells are CCW from outside when d/drow x d/dcol points out.
+void AddWrappedGrid(TriangleMesh* mesh, int rows, int cols) {
+  for (int i = 0; i < rows; ++i) {
+    const int i1 = (i + 1) % rows;
+    for (int j = 0; j < cols; ++j) {
+      const int j1 = (j + 1) % cols;
+      AddQuad(mesh, i * cols + j, i1 * cols + j, i1 * cols + j1, i * cols + j1);
+    }
+  }
+}
+
+}  // namespace
+
+TriangleMesh MakeBox(const Vector3& half_extents) {
+  Require(Positive(half_extents.x()) && Positive(half_extents.y()) && Positive(half_extents.z()),
+          "MakeBox: half extents must be finite and > 0");
+  TriangleMesh mesh;
+  mesh.name = "box";
+  // Vertex k has coordinate signs from its bits: x = bit 0, y = bit 1, z = bit 2.
+  for (int k = 0; k < 8; ++k) {
+    mesh.vertices.emplace_back((k & 1 ? 1 : -1) * half_extents.x(),
+                               (k & 2 ? 1 : -1) * half_extents.y(),
+                               (k & 4 ? 1 : -1) * half_extents.z());
+  }
+  AddQuad(&mesh, 0, 4, 6, 2);  // -x
+  AddQuad(&mesh, 1, 3, 7, 5);  // +x
+  AddQuad(&mesh, 0, 1, 5, 4);  // -y
+  AddQuad(&mesh, 2, 6, 7, 3);  // +y
+  AddQuad(&mesh, 0, 2, 3, 1);  // -z
+  AddQuad(&mesh, 4, 5, 7, 6);  // +z
+  return mesh;
+}
+
+TriangleMesh MakeIcosphere(double radius, int subdivisions) {
+  Require(Positive(radius), "MakeIcosphere: radius must be finite and > 0");
+  Require(subdivisions >= 0 && subdivisions <= 8, "MakeIcosphere: subdivisions must be in [0, 8]");
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Vector3> unit = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                               {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                               {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (Vector3& v : unit) v.normalize();
+  std::vector<Eigen::Vector3i> faces = {
+      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int s = 0; s < subdivisions; ++s) {
+    // Shared edge midpoints keep the surface welded.
+    std::map<std::pair<int, int>, int> midpoint;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto [it, inserted] = midpoint.emplace(key, static_cast<int>(unit.size()));
+      if (inserted) unit.push_back((unit[a] + unit[b]).normalized());
+      return it->second;
+    };
+    std::vector<Eigen::Vector3i> finer;
+    finer.reserve(faces.size() * 4);
+    for (const Eigen::Vector3i& f : faces) {
+      const int ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
+      finer.emplace_back(f[0], ab, ca);
+      finer.emplace_back(f[1], bc, ab);
+      finer.emplace_back(f[2], ca, bc);
+      finer.emplace_back(ab, bc, ca);
+    }
+    faces = std::move(finer);
+  }
+  TriangleMesh mesh;
+  mesh.name = "icosphere";
+  mesh.vertices.reserve(unit.size());
+  for (const Vector3& u : unit) mesh.vertices.push_back(radius * u);
+  mesh.triangles = std::move(faces);
+  return mesh;
+}
+
+TriangleMesh MakeCylinder(double radius, double length, int segments) {
+  Require(Positive(radius) && Positive(length), "MakeCylinder: radius and length must be > 0");
+  Require(segments >= 3, "MakeCylinder: segments must be >= 3");
+  TriangleMesh mesh;
+  mesh.name = "cylinder";
+  const double h = 0.5 * length;
+  // Vertices: bottom ring 0..n-1, top ring n..2n-1, bottom centre, top centre.
+  const int n = segments;
+  for (int z = 0; z < 2; ++z) {
+    for (int i = 0; i < n; ++i) {
+      const double a = 2.0 * M_PI * i / n;
+      mesh.vertices.emplace_back(radius * std::cos(a), radius * std::sin(a), z ? h : -h);
+    }
+  }
+  const int bottom = 2 * n, top = 2 * n + 1;
+  mesh.vertices.emplace_back(0.0, 0.0, -h);
+  mesh.vertices.emplace_back(0.0, 0.0, h);
+  for (int i = 0; i < n; ++i) {
+    const int i1 = (i + 1) % n;
+    mesh.triangles.emplace_back(bottom, i1, i);
+    mesh.triangles.emplace_back(top, n + i, n + i1);
+    AddQuad(&mesh, i, i1, n + i1, n + i);
+  }
+  return mesh;
+}
+
+TriangleMesh MakeTorus(double major_radius, double minor_radius, int major_segments,
+                       int minor_segments) {
+  Require(Positive(major_radius) && Positive(minor_radius) && minor_radius < major_radius,
+          "MakeTorus: need 0 < minor_radius < major_radius");
+  Require(major_segments >= 3 && minor_segments >= 3, "MakeTorus: segments must be >= 3");
+  TriangleMesh mesh;
+  mesh.name = "torus";
+  for (int i = 0; i < major_segments; ++i) {
+    const double u = 2.0 * M_PI * i / major_segments;
+    for (int j = 0; j < minor_segments; ++j) {
+      const double v = 2.0 * M_PI * j / minor_segments;
+      const double rho = major_radius + minor_radius * std::cos(v);
+      mesh.vertices.emplace_back(rho * std::cos(u), rho * std::sin(u), minor_radius * std::sin(v));
+    }
+  }
+  // d/du x d/dv points away from the tube centre.
+  AddWrappedGrid(&mesh, major_segments, minor_segments);
+  return mesh;
+}
+
+TriangleMesh MakeTorusKnot(int p, int q, double tube_radius, double scale, int segments,
+                           int tube_segments) {
+  Require(p >= 1 && q >= 1 && std::gcd(p, q) == 1, "MakeTorusKnot: p, q must be coprime and >= 1");
+  Require(Positive(tube_radius) && Positive(scale), "MakeTorusKnot: radii must be > 0");
+  Require(segments >= 3 && tube_segments >= 3, "MakeTorusKnot: segments must be >= 3");
+  const double R = scale, r = 0.5 * scale;
+  // Centre line c(t) on the torus, and the torus surface normal there, which
+  // is perpendicular to c'(t) and periodic, so the tube closes without twist.
+  auto centre = [&](double t, Vector3* normal) {
+    const double u = p * t, v = q * t;
+    const Vector3 radial(std::cos(u), std::sin(u), 0.0);
+    if (normal) *normal = std::cos(v) * radial + std::sin(v) * Vector3::UnitZ();
+    return Vector3((R + r * std::cos(v)) * radial + r * std::sin(v) * Vector3::UnitZ());
+  };
+
+  // Refuse a tube that would cut through itself: points of the centre line
+  // more than half a tube circumference apart along it must stay 2 radii apart,
+  // and the line must not bend tighter than the tube radius.
+  const int n = 4 * segments;
+  std::vector<Vector3> c(n);
+  std::vector<double> s(n + 1, 0.0);  // arc length to sample i
+  for (int i = 0; i < n; ++i) c[i] = centre(2.0 * M_PI * i / n, nullptr);
+  for (int i = 0; i < n; ++i) s[i + 1] = s[i] + (c[(i + 1) % n] - c[i]).norm();
+  const double length = s[n];
+  for (int i = 0; i < n; ++i) {
+    // Curvature from the circle through three consecutive samples.
+    const Vector3 a = c[i] - c[(i + n - 1) % n], b = c[(i + 1) % n] - c[i];
+    const double curvature = 2.0 * a.cross(b).norm() / (a.norm() * b.norm() * (a + b).norm());
+    Require(curvature * tube_radius < 1.0,
+            "MakeTorusKnot: tube_radius exceeds the knot's radius of curvature");
+    for (int j = i + 1; j < n; ++j) {
+      const double along = std::min(s[j] - s[i], length - (s[j] - s[i]));
+      if (along > M_PI * tube_radius && (c[j] - c[i]).norm() < 2.0 * tube_radius)
+        throw std::invalid_argument("MakeTorusKnot: tube_radius too large, the tube would self-intersect");
+    }
+  }
+
+  TriangleMesh mesh;
+  mesh.name = "torus_knot_" + std::to_string(p) + "_" + std::to_string(q);
+  for (int i = 0; i < segments; ++i) {
+    const double t = 2.0 * M_PI * i / segments;
+    Vector3 n_M;
+    const Vector3 c_M = centre(t, &n_M);
+    const Vector3 tangent = (centre(t + 1e-6, nullptr) - centre(t - 1e-6, nullptr)).normalized();
+    const Vector3 b_M = n_M.cross(tangent);  // tangent x (cos n + sin b) points outward
+    for (int j = 0; j < tube_segments; ++j) {
+      const double phi = 2.0 * M_PI * j / tube_segments;
+      mesh.vertices.push_back(c_M + tube_radius * (std::cos(phi) * n_M + std::sin(phi) * b_M));
+    }
+  }
+  AddWrappedGrid(&mesh, segments, tube_segments);
+  return mesh;
+}
+
+TriangleMesh MakeUSlot(const Vector3& outer_half_extents, double slot_width, double slot_depth) {
+  const double hx = outer_half_extents.x(), hy = outer_half_extents.y(), hz = outer_half_extents.z();
+  Require(Positive(hx) && Positive(hy) && Positive(hz), "MakeUSlot: half extents must be > 0");
+  Require(Positive(slot_width) && slot_width < 2.0 * hy,
+          "MakeUSlot: need 0 < slot_width < 2 * half_extents.y");
+  Require(Positive(slot_depth) && slot_depth < 2.0 * hz,
+          "MakeUSlot: need 0 < slot_depth < 2 * half_extents.z");
+  const double w = 0.5 * slot_width, floor_z = hz - slot_depth;
+  // U-shaped cross-section (y, z), counter-clockwise seen from +x.
+  const std::array<std::array<double, 2>, 8> u = {{{-hy, -hz},
+                                                    {hy, -hz},
+                                                    {hy, hz},
+                                                    {w, hz},
+                                                    {w, floor_z},
+                                                    {-w, floor_z},
+                                                    {-w, hz},
+                                                    {-hy, hz}}};
+  // Its triangulation with no extra vertices (checked CCW for w < hy, floor_z > -hz).
+  const std::array<std::array<int, 3>, 6> cap = {
+      {{0, 1, 4}, {1, 2, 3}, {1, 3, 4}, {0, 4, 5}, {0, 5, 6}, {0, 6, 7}}};
+  TriangleMesh mesh;
+  mesh.name = "u_slot";
+  for (double x : {-hx, hx}) {
+    for (const auto& yz : u) mesh.vertices.emplace_back(x, yz[0], yz[1]);
+  }
+  // Vertices 0..7 at x = -hx (cap seen from -x: reversed), 8..15 at x = +hx.
+  for (const auto& t : cap) {
+    mesh.triangles.emplace_back(8 + t[0], 8 + t[1], 8 + t[2]);
+    mesh.triangles.emplace_back(t[0], t[2], t[1]);
+  }
+  for (int i = 0; i < 8; ++i) {
+    const int i1 = (i + 1) % 8;
+    AddQuad(&mesh, i, i1, 8 + i1, 8 + i);
+  }
+  return mesh;
+}
+
+TriangleMesh MakeThinPlate(double half_x, double half_y, double half_thickness) {
+  TriangleMesh mesh = MakeBox(Vector3(half_x, half_y, half_thickness));
+  mesh.name = "thin_plate";
+  return mesh;
+}
+
+}  // namespace pd

@@ -1,0 +1,35 @@
+#pragma once
+// A probe model P posed in a scene model's frame S: the shared context of all
+// pair queries. Every query takes an extra translation `offset_S` of the probe
+// (expressed in S), the configuration-space point PolyDepth moves through.
+#include "pd_core/collision_model.h"
+#include "pd_core/relative_pose.h"
+
+namespace pd {
+
+struct ModelPair {
+  const CollisionModel& P;
+  const CollisionModel& S;
+  RelativePose X_SP;
+
+  ModelPair(const CollisionModel& probe, const CollisionModel& scene, const Isometry3& X_WP,
+            const Isometry3& X_WS)
+      : P(probe), S(scene), X_SP(RelativePose::FromWorld(X_WS, X_WP)) {}
+
+  // Probe vertex v in S at translation offset_S.
+  Vector3 ProbeVertex(int v, const Vector3& offset_S) const {
+    return X_SP * P.mesh().vertices[v] + offset_S;
+  }
+  void ProbeTriangle(int t, const Vector3& offset_S, Vector3 out[3]) const {
+    const auto& tri = P.mesh().triangles[t];
+    for (int k = 0; k < 3; ++k) out[k] = ProbeVertex(tri[k], offset_S);
+  }
+  void SceneTriangle(int t, Vector3 out[3]) const {
+    const auto& tri = S.mesh().triangles[t];
+    for (int k = 0; k < 3; ++k) out[k] = S.mesh().vertices[tri[k]];
+  }
+  // Sum of bounding radii: the length that relative tolerances multiply.
+  double size() const { return P.radius() + S.radius(); }
+};
+
+}  // namespace pd
