@@ -57,3 +57,52 @@ inline double BoxGapLowerBound(const ProbeBoxInS& a, const BvhNode& b,
 }
 
 }  // namespace pd
+
+namespace pd {
+
+// The times s in [s_lo, s_hi] at which the probe box moved by s * sweep_S can
+// overlap the scene box, from the slab overlap on S's and P's axes (a
+// projection overlap must hold on every axis at the same time). Returns false
+// if the interval within [0, s_max] is empty.
+inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
+                                    const RelativePose& X_SP, const Vector3& sweep_S,
+                                    double s_max, double* s_lo, double* s_hi) {
+  double lo = 0.0, hi = s_max;
+  const Vector3 c = a.center_S - b.center_M;
+  auto clip = [&](double center, double rate, double radius) {
+    // |center + s*rate| <= radius
+    if (std::abs(rate) < 1e-300) return std::abs(center) <= radius;
+    double t0 = (-radius - center) / rate, t1 = (radius - center) / rate;
+    if (t0 > t1) std::swap(t0, t1);
+    lo = std::max(lo, t0);
+    hi = std::min(hi, t1);
+    return lo <= hi;
+  };
+  for (int k = 0; k < 3; ++k)
+    if (!clip(c[k], sweep_S[k], a.extent_on_S_axes[k] + b.half_M[k])) return false;
+  for (int j = 0; j < 3; ++j) {
+    const Vector3 L = X_SP.R_SP.col(j);
+    if (!clip(L.dot(c), L.dot(sweep_S), (*a.half_P)[j] + X_SP.absR_SP.col(j).dot(b.half_M)))
+      return false;
+  }
+  // Edge-edge axes e_k x R_j: they separate thin, rotated boxes that the face
+  // axes cannot, which matters for long sliver triangles.
+  for (int k = 0; k < 3; ++k) {
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      // L = e_k x R_col_j, expressed in S: components of the cross product.
+      Vector3 L = Vector3::Unit(k).cross(X_SP.R_SP.col(j));
+      const double len2 = L.squaredNorm();
+      if (len2 < 1e-12) continue;
+      const double r_b = b.half_M[k1] * X_SP.absR_SP(k2, j) + b.half_M[k2] * X_SP.absR_SP(k1, j);
+      const double r_a = (*a.half_P)[j1] * X_SP.absR_SP(k, j2) + (*a.half_P)[j2] * X_SP.absR_SP(k, j1);
+      if (!clip(L.dot(c), L.dot(sweep_S), r_a + r_b)) return false;
+    }
+  }
+  *s_lo = lo;
+  *s_hi = hi;
+  return true;
+}
+
+}  // namespace pd

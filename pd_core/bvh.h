@@ -20,7 +20,7 @@ struct BvhNode {
 
 class Bvh {
  public:
-  static constexpr int kMaxLeafTriangles = 2;
+  static constexpr int kMaxLeafTriangles = 1;
   Bvh() = default;
   explicit Bvh(const TriangleMesh& mesh);
 

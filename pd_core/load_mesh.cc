@@ -1,18 +1,21 @@
 #include "pd_core/load_mesh.h"
 
+#include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/LogStream.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <mutex>
 #include <sstream>
 #include <unordered_map>
 
@@ -42,6 +45,43 @@ void CheckOptions(const std::string& path, const MeshLoadOptions& options) {
   if (!(options.max_abs_coordinate > 0.0))
     Fail(path, "max_abs_coordinate " + Str(options.max_abs_coordinate) + " is invalid (must be > 0)");
 }
+
+// assimp reports some damage only in its log: the OFF reader clamps
+// out-of-range vertex indices, drops faces of more than 9 vertices and leaves
+// faces empty when the file is shorter than its header says. Its process-wide
+// logger forwards to a per-thread list while this thread imports a file.
+thread_local std::vector<std::string>* t_assimp_messages = nullptr;
+
+class CaptureStream : public Assimp::LogStream {
+ public:
+  void write(const char* message) override {
+    if (t_assimp_messages == nullptr) return;
+    std::string m(message);
+    while (!m.empty() && (m.back() == '\n' || m.back() == '\r')) m.pop_back();
+    const size_t tag = m.find(": ");  // drop the "Error, T0: " prefix
+    t_assimp_messages->push_back(tag == std::string::npos ? m : m.substr(tag + 2));
+  }
+};
+
+// Collects assimp's errors and warnings emitted on this thread while alive.
+class AssimpMessages {
+ public:
+  AssimpMessages() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+      if (Assimp::DefaultLogger::isNullLogger())
+        Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);  // no log file
+      Assimp::DefaultLogger::get()->attachStream(new CaptureStream,
+                                                 Assimp::Logger::Err | Assimp::Logger::Warn);
+    });
+    t_assimp_messages = &messages_;
+  }
+  ~AssimpMessages() { t_assimp_messages = nullptr; }
+  const std::vector<std::string>& messages() const { return messages_; }
+
+ private:
+  std::vector<std::string> messages_;
+};
 
 // Returns the file size; refuses what assimp would report less clearly.
 uintmax_t CheckReadable(const std::string& path) {
@@ -141,15 +181,23 @@ void CheckPlyHeader(const std::string& path, const std::string& head, uintmax_t 
 }
 
 // Binary STL: 80-byte header, uint32 count, 50 bytes per triangle.
-void CheckBinaryStl(const std::string& path, const std::string& head, uintmax_t size,
+// Returns whether the file has the exact size of a binary STL.
+bool CheckBinaryStl(const std::string& path, const std::string& head, uintmax_t size,
                     int64_t max_triangles) {
-  if (head.size() < 84) return;
+  if (head.size() < 84) return false;
   uint32_t count = 0;
   for (int i = 3; i >= 0; --i) count = (count << 8) | static_cast<unsigned char>(head[80 + i]);
-  if (84 + 50 * static_cast<uint64_t>(count) != size) return;  // not binary STL
+  if (84 + 50 * static_cast<uint64_t>(count) != size) return false;
   if (count > static_cast<uint64_t>(max_triangles))
     Fail(path, "binary STL declares " + std::to_string(count) +
                    " triangles, more than max_triangles = " + std::to_string(max_triangles));
+  return true;
+}
+
+std::string LowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
 }
 
 struct RawCounts {
@@ -173,6 +221,9 @@ RawCounts CheckRawScene(const std::string& path, const aiScene& scene) {
     }
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices == 0 || face.mIndices == nullptr)
+        Fail(path, "face " + std::to_string(f) + " of mesh " + std::to_string(m) +
+                       " is empty (file shorter than its header says?)");
       for (unsigned k = 0; k < face.mNumIndices; ++k) {
         if (face.mIndices[k] >= mesh.mNumVertices)
           Fail(path, "face " + std::to_string(f) + " of mesh " + std::to_string(m) +
@@ -205,6 +256,27 @@ struct PositionHash {
   }
 };
 
+// Edges whose two faces traverse them in the same direction (one face flipped).
+int CountMisorientedEdges(const TriangleMesh& mesh, const MeshTopology& topo) {
+  auto forward = [&](int f, const MeshEdge& e) {  // does face f run v0 -> v1?
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    for (int k = 0; k < 3; ++k)
+      if (t[k] == e.v0 && t[(k + 1) % 3] == e.v1) return true;
+    return false;
+  };
+  int count = 0;
+  for (const MeshEdge& e : topo.edges)
+    if (e.f1 >= 0 && forward(e.f0, e) == forward(e.f1, e)) ++count;
+  return count;
+}
+
+double SignedVolume(const TriangleMesh& mesh) {
+  double six_v = 0.0;
+  for (const auto& t : mesh.triangles)
+    six_v += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  return six_v / 6.0;
+}
+
 }  // namespace
 
 LoadedMesh LoadMesh(const std::string& path, const MeshLoadOptions& options) {
@@ -214,11 +286,20 @@ LoadedMesh LoadMesh(const std::string& path, const MeshLoadOptions& options) {
   const std::string head = ReadPrefix(path, 1 << 16);
   CheckOffHeader(path, head, size, max_triangles);
   CheckPlyHeader(path, head, size, max_triangles);
-  CheckBinaryStl(path, head, size, max_triangles);
+  const bool binary_stl = CheckBinaryStl(path, head, size, max_triangles);
 
+  AssimpMessages log;
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path, 0);
-  if (scene == nullptr) Fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
+  if (scene == nullptr) {
+    // assimp picks the reader by extension, then guesses from the content.
+    const bool misnamed_stl = binary_stl && LowerExtension(path) != ".stl";
+    Fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString() +
+                   (misnamed_stl ? " (the size fits a binary STL: name it *.stl)" : ""));
+  }
+  for (const std::string& m : log.messages()) {
+    if (m.rfind("OFF:", 0) == 0) Fail(path, "assimp's OFF reader reported: " + m);
+  }
   const RawCounts raw = CheckRawScene(path, *scene);
   CheckTriangleCount(path, raw.triangles, max_triangles);
 
@@ -239,6 +320,10 @@ LoadedMesh LoadMesh(const std::string& path, const MeshLoadOptions& options) {
   CheckTriangleCount(path, triangles, max_triangles);
 
   LoadedMesh out;
+  for (const std::string& m : log.messages()) {
+    // Materials do not matter for collision geometry.
+    if (m.find("material") == std::string::npos) out.warnings.push_back(path + ": assimp: " + m);
+  }
   TriangleMesh& mesh_M = out.mesh;
   mesh_M.name = path;
   mesh_M.triangles.reserve(static_cast<size_t>(triangles));
@@ -246,30 +331,37 @@ LoadedMesh LoadMesh(const std::string& path, const MeshLoadOptions& options) {
   int num_repeated = 0;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh& in = *scene->mMeshes[m];
+    // Weld in assimp's vertex order (the file's, for clean files), keeping
+    // only vertices that triangles use.
     std::vector<int> index_of(in.mNumVertices, -1);  // assimp vertex -> welded vertex
     for (unsigned f = 0; f < in.mNumFaces; ++f) {
       const aiFace& face = in.mFaces[f];
       if (face.mNumIndices != 3) continue;
-      Eigen::Vector3i tri;
       for (int k = 0; k < 3; ++k) {
-        const unsigned i = face.mIndices[k];
-        if (i >= in.mNumVertices) Fail(path, "assimp produced an out-of-range vertex index");
-        if (index_of[i] < 0) {
-          const aiVector3D& p = in.mVertices[i];
-          const Vector3 p_MV = options.scale * Vector3(p.x, p.y, p.z);
-          if (!p_MV.allFinite())
-            Fail(path, "non-finite coordinate after node transforms and scale");
-          if (p_MV.cwiseAbs().maxCoeff() > options.max_abs_coordinate)
-            Fail(path, "coordinate " + Str(p_MV.cwiseAbs().maxCoeff()) +
-                           " m (after scale " + Str(options.scale) +
-                           ") beyond max_abs_coordinate = " + Str(options.max_abs_coordinate) + " m");
-          const PositionKey key{p_MV.x() + 0.0, p_MV.y() + 0.0, p_MV.z() + 0.0};
-          auto [it, inserted] = welded.emplace(key, mesh_M.num_vertices());
-          if (inserted) mesh_M.vertices.push_back(p_MV);
-          index_of[i] = it->second;
-        }
-        tri[k] = index_of[i];
+        if (face.mIndices[k] >= in.mNumVertices)
+          Fail(path, "assimp produced an out-of-range vertex index");
+        index_of[face.mIndices[k]] = 0;
       }
+    }
+    for (unsigned i = 0; i < in.mNumVertices; ++i) {
+      if (index_of[i] < 0) continue;
+      const aiVector3D& p = in.mVertices[i];
+      const Vector3 p_MV = options.scale * Vector3(p.x, p.y, p.z);
+      if (!p_MV.allFinite()) Fail(path, "non-finite coordinate after node transforms and scale");
+      if (p_MV.cwiseAbs().maxCoeff() > options.max_abs_coordinate)
+        Fail(path, "coordinate " + Str(p_MV.cwiseAbs().maxCoeff()) + " m (after scale " +
+                       Str(options.scale) + ") beyond max_abs_coordinate = " +
+                       Str(options.max_abs_coordinate) + " m");
+      const PositionKey key{p_MV.x() + 0.0, p_MV.y() + 0.0, p_MV.z() + 0.0};
+      auto [it, inserted] = welded.emplace(key, mesh_M.num_vertices());
+      if (inserted) mesh_M.vertices.push_back(p_MV);
+      index_of[i] = it->second;
+    }
+    for (unsigned f = 0; f < in.mNumFaces; ++f) {
+      const aiFace& face = in.mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      const Eigen::Vector3i tri(index_of[face.mIndices[0]], index_of[face.mIndices[1]],
+                                index_of[face.mIndices[2]]);
       if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0]) {
         ++num_repeated;
         continue;
@@ -294,6 +386,13 @@ LoadedMesh LoadMesh(const std::string& path, const MeshLoadOptions& options) {
   if (!out.topology.closed())
     out.warnings.push_back(path + " is " + out.topology.Describe() +
                            "; penetration depth works on it, containment tests need a closed mesh");
+  // Contact normals and containment assume outward counter-clockwise faces.
+  const int misoriented = CountMisorientedEdges(mesh_M, out.topology);
+  if (misoriented > 0)
+    out.warnings.push_back(path + ": faces are inconsistently oriented across " +
+                           std::to_string(misoriented) + " edges");
+  else if (out.topology.closed() && SignedVolume(mesh_M) < 0.0)
+    out.warnings.push_back(path + ": closed but faces point inward (negative volume)");
   return out;
 }
 

@@ -2,11 +2,14 @@
 // Loads a triangle mesh file (OBJ, STL, OFF, PLY; other formats assimp reads
 // may work but are untested) into a TriangleMesh in the file's own frame M.
 // Vertex coordinates are the file's numbers times `scale`, taken as metres; no
-// unit conversion and no re-centring. Vertices at identical positions are
-// welded (also across sub-meshes) so closed files give closed manifolds.
+// unit conversion and no re-centring. Polygons are triangulated, node
+// transforms applied, and vertices at identical positions welded (also across
+// sub-meshes, and STL facets) so closed files give closed manifolds. Vertices
+// keep the file's order; ones no triangle uses are dropped.
 //
 // Note: assimp stores coordinates as 32-bit floats, so file coordinates keep
-// about 7 significant digits.
+// about 7 significant digits, and it also merges vertices closer than 1e-5
+// file units.
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -38,9 +41,10 @@ struct LoadedMesh {
   std::vector<std::string> warnings;
 };
 
-// Throws MeshLoadError on a missing/unreadable/empty file, an assimp failure,
-// no triangles, NaN/inf or too large coordinates, too many triangles, or a bad
-// scale.
+// Throws MeshLoadError on a missing/unreadable/empty file, a header declaring
+// more than the file holds, an assimp failure (including damage its OFF reader
+// only logs: short files, out-of-range indices), no triangles, NaN/inf or too
+// large coordinates, too many triangles, or bad options. Thread-safe.
 LoadedMesh LoadMesh(const std::string& path, const MeshLoadOptions& options = {});
 
 }  // namespace pd

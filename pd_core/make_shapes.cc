@@ -242,3 +242,202 @@ TriangleMesh MakeThinPlate(double half_x, double half_y, double half_thickness) 
 }
 
 }  // namespace pd
+
+// ---- Shapes for the haptic demo scenes (added with haptics/) ----
+
+namespace pd {
+namespace {
+
+// Point on the boundary of the axis-aligned rectangle [-hx, hx] x [-hy, hy]
+// at parametric angle a: the square's boundary point along (cos a, sin a),
+// stretched. Corners fall at a = pi/4 + k pi/2.
+Eigen::Vector2d RectangleBoundaryPoint(double hx, double hy, double a) {
+  const double c = std::cos(a), s = std::sin(a);
+  const double m = std::max(std::abs(c), std::abs(s));
+  return {hx * c / m, hy * s / m};
+}
+
+// Prism over a counter-clockwise polygon (seen from +z) with its cap
+// triangulation `cap` (CCW from +z), z in [z0, z1]. Bottom ring first.
+TriangleMesh ExtrudePolygon(const std::vector<Eigen::Vector2d>& polygon,
+                            const std::vector<std::array<int, 3>>& cap, double z0, double z1) {
+  TriangleMesh mesh;
+  const int n = static_cast<int>(polygon.size());
+  for (double z : {z0, z1}) {
+    for (const Eigen::Vector2d& p : polygon) mesh.vertices.emplace_back(p.x(), p.y(), z);
+  }
+  for (const auto& t : cap) {
+    mesh.triangles.emplace_back(n + t[0], n + t[1], n + t[2]);  // top, +z
+    mesh.triangles.emplace_back(t[0], t[2], t[1]);              // bottom, -z
+  }
+  for (int i = 0; i < n; ++i) {
+    const int i1 = (i + 1) % n;
+    AddQuad(&mesh, i, i1, n + i1, n + i);
+  }
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh MakeCup(double outer_radius, double height, double wall_thickness,
+                     double floor_thickness, int segments) {
+  Require(Positive(outer_radius) && Positive(height), "MakeCup: radius and height must be > 0");
+  Require(Positive(wall_thickness) && wall_thickness < outer_radius,
+          "MakeCup: need 0 < wall_thickness < outer_radius");
+  Require(Positive(floor_thickness) && floor_thickness < height,
+          "MakeCup: need 0 < floor_thickness < height");
+  Require(segments >= 3, "MakeCup: segments must be >= 3");
+  const int n = segments;
+  const double h = 0.5 * height, r_in = outer_radius - wall_thickness;
+  const double z_floor = -h + floor_thickness;
+  TriangleMesh mesh;
+  mesh.name = "cup";
+  // Rings: 0 outer bottom, 1 outer top, 2 inner top, 3 inner floor.
+  const std::array<std::pair<double, double>, 4> rings = {
+      {{outer_radius, -h}, {outer_radius, h}, {r_in, h}, {r_in, z_floor}}};
+  for (const auto& [r, z] : rings) {
+    for (int i = 0; i < n; ++i) {
+      const double a = 2.0 * M_PI * i / n;
+      mesh.vertices.emplace_back(r * std::cos(a), r * std::sin(a), z);
+    }
+  }
+  const int base_centre = 4 * n, floor_centre = 4 * n + 1;
+  mesh.vertices.emplace_back(0.0, 0.0, -h);
+  mesh.vertices.emplace_back(0.0, 0.0, z_floor);
+  auto v = [n](int ring, int i) { return ring * n + (i % n); };
+  for (int i = 0; i < n; ++i) {
+    mesh.triangles.emplace_back(base_centre, v(0, i + 1), v(0, i));   // base, -z
+    AddQuad(&mesh, v(0, i), v(0, i + 1), v(1, i + 1), v(1, i));      // outer wall
+    AddQuad(&mesh, v(1, i), v(1, i + 1), v(2, i + 1), v(2, i));      // rim, +z
+    AddQuad(&mesh, v(3, i), v(2, i), v(2, i + 1), v(3, i + 1));      // inner wall, inward
+    mesh.triangles.emplace_back(floor_centre, v(3, i), v(3, i + 1));  // inner floor, +z
+  }
+  return mesh;
+}
+
+TriangleMesh MakeBlockWithHole(const Vector3& half_extents, double hole_half_width,
+                               bool round_hole, int segments) {
+  const double hx = half_extents.x(), hy = half_extents.y(), hz = half_extents.z();
+  Require(Positive(hx) && Positive(hy) && Positive(hz),
+          "MakeBlockWithHole: half extents must be > 0");
+  Require(Positive(hole_half_width) && hole_half_width < std::min(hx, hy),
+          "MakeBlockWithHole: need 0 < hole_half_width < min(half_extents.x, half_extents.y)");
+  Require(segments >= (round_hole ? 8 : 4) && segments % 4 == 0,
+          "MakeBlockWithHole: segments must be a multiple of 4 (>= 8 for a round hole)");
+  const int n = segments;
+  TriangleMesh mesh;
+  mesh.name = round_hole ? "block_with_round_hole" : "block_with_square_hole";
+  // Rings at the same parametric angles (starting at a corner, so all four
+  // outer corners are vertices): 0 outer bottom, 1 outer top, 2 hole top,
+  // 3 hole bottom.
+  for (int ring = 0; ring < 4; ++ring) {
+    const double z = (ring == 1 || ring == 2) ? hz : -hz;
+    for (int i = 0; i < n; ++i) {
+      const double a = M_PI / 4.0 + 2.0 * M_PI * i / n;
+      Eigen::Vector2d p;
+      if (ring < 2) {
+        p = RectangleBoundaryPoint(hx, hy, a);
+      } else if (round_hole) {
+        p = hole_half_width * Eigen::Vector2d(std::cos(a), std::sin(a));
+      } else {
+        p = RectangleBoundaryPoint(hole_half_width, hole_half_width, a);
+      }
+      mesh.vertices.emplace_back(p.x(), p.y(), z);
+    }
+  }
+  auto v = [n](int ring, int i) { return ring * n + (i % n); };
+  for (int i = 0; i < n; ++i) {
+    AddQuad(&mesh, v(0, i), v(0, i + 1), v(1, i + 1), v(1, i));  // outer wall
+    AddQuad(&mesh, v(1, i), v(1, i + 1), v(2, i + 1), v(2, i));  // top face, +z
+    AddQuad(&mesh, v(3, i), v(2, i), v(2, i + 1), v(3, i + 1));  // hole wall, toward axis
+    AddQuad(&mesh, v(0, i), v(3, i), v(3, i + 1), v(0, i + 1));  // bottom face, -z
+  }
+  return mesh;
+}
+
+TriangleMesh MakeLRod(double arm_x, double arm_y, double width, double thickness) {
+  Require(Positive(width) && Positive(thickness), "MakeLRod: width and thickness must be > 0");
+  Require(std::isfinite(arm_x) && std::isfinite(arm_y) && arm_x > 0.5 * width &&
+              arm_y > 0.5 * width,
+          "MakeLRod: need arm_x > width / 2 and arm_y > width / 2");
+  const double w = 0.5 * width;
+  // The L outline, counter-clockwise; vertex 3 is the reflex corner and every
+  // cap triangle fans from it.
+  const std::vector<Eigen::Vector2d> outline = {{-w, -w}, {arm_x, -w}, {arm_x, w},
+                                                {w, w},   {w, arm_y}, {-w, arm_y}};
+  const std::vector<std::array<int, 3>> cap = {{3, 4, 5}, {3, 5, 0}, {3, 0, 1}, {3, 1, 2}};
+  TriangleMesh mesh = ExtrudePolygon(outline, cap, -0.5 * thickness, 0.5 * thickness);
+  mesh.name = "l_rod";
+  return mesh;
+}
+
+TriangleMesh MakeSpoon(const SpoonDimensions& d) {
+  Require(Positive(d.length) && Positive(d.handle_width) && Positive(d.bowl_length) &&
+              Positive(d.bowl_width) && Positive(d.bowl_depth) && Positive(d.thickness),
+          "MakeSpoon: all dimensions must be finite and > 0");
+  Require(d.bowl_length < d.length, "MakeSpoon: need bowl_length < length");
+  Require(d.bowl_width > d.handle_width, "MakeSpoon: need bowl_width > handle_width");
+  Require(d.segments_along >= 4 && d.segments_across >= 2,
+          "MakeSpoon: need segments_along >= 4 and segments_across >= 2");
+  const double a = 0.5 * d.bowl_length, b = 0.5 * d.bowl_width;
+  const double x_c = d.length - a;  // bowl centre
+  const double hw_handle = 0.5 * d.handle_width;
+  // Where the bowl outline overtakes the handle, and where the tip is cut
+  // (at a quarter of the bowl's half width, so the tip column is not degenerate).
+  const double x_join = x_c - a * std::sqrt(1.0 - (hw_handle / b) * (hw_handle / b));
+  const double x_tip = x_c + a * std::sqrt(1.0 - 0.25 * 0.25);
+  auto half_width = [&](double x) {
+    const double u = (x - x_c) / a;
+    const double bowl = std::abs(u) < 1.0 ? b * std::sqrt(1.0 - u * u) : 0.0;
+    return x <= x_c ? std::max(hw_handle, bowl) : bowl;
+  };
+  // The bowl's dip, inside a slightly smaller ellipse so a lip remains.
+  auto dip = [&](double x, double y) {
+    const double u = (x - x_c) / (0.85 * a), w = y / (0.85 * b);
+    return -d.bowl_depth * std::max(0.0, 1.0 - u * u - w * w);
+  };
+  // Columns: handle end, mid-handle, then the bowl sampled evenly in angle.
+  std::vector<double> xs = {0.0, 0.5 * x_join};
+  const double t0 = std::acos(std::clamp((x_join - x_c) / a, -1.0, 1.0));
+  const double t1 = std::acos(std::clamp((x_tip - x_c) / a, -1.0, 1.0));
+  for (int i = 0; i <= d.segments_along; ++i) {
+    const double t = t0 + (t1 - t0) * i / d.segments_along;
+    xs.push_back(x_c + a * std::cos(t));
+  }
+  const int nx = static_cast<int>(xs.size()), ny = d.segments_across + 1;
+  TriangleMesh mesh;
+  mesh.name = "spoon";
+  // Grid vertex (i, j) on the bottom face is i * ny + j, on the top face
+  // nx * ny + i * ny + j.
+  for (double z : {-0.5 * d.thickness, 0.5 * d.thickness}) {
+    for (int i = 0; i < nx; ++i) {
+      const double hw = half_width(xs[i]);
+      for (int j = 0; j < ny; ++j) {
+        const double y = hw * (2.0 * j / (ny - 1) - 1.0);
+        mesh.vertices.emplace_back(xs[i], y, z + dip(xs[i], y));
+      }
+    }
+  }
+  const int top = nx * ny;
+  auto g = [ny](int i, int j) { return i * ny + j; };
+  for (int i = 0; i + 1 < nx; ++i) {
+    for (int j = 0; j + 1 < ny; ++j) {
+      AddQuad(&mesh, top + g(i, j), top + g(i + 1, j), top + g(i + 1, j + 1), top + g(i, j + 1));
+      AddQuad(&mesh, g(i, j), g(i, j + 1), g(i + 1, j + 1), g(i + 1, j));
+    }
+  }
+  // Side wall along the grid's boundary, walked counter-clockwise from +z.
+  std::vector<int> loop;
+  for (int i = 0; i < nx - 1; ++i) loop.push_back(g(i, 0));
+  for (int j = 0; j < ny - 1; ++j) loop.push_back(g(nx - 1, j));
+  for (int i = nx - 1; i > 0; --i) loop.push_back(g(i, ny - 1));
+  for (int j = ny - 1; j > 0; --j) loop.push_back(g(0, j));
+  const int m = static_cast<int>(loop.size());
+  for (int k = 0; k < m; ++k) {
+    const int u = loop[k], w = loop[(k + 1) % m];
+    AddQuad(&mesh, u, w, top + w, top + u);
+  }
+  return mesh;
+}
+
+}  // namespace pd

@@ -47,3 +47,51 @@ TriangleMesh MakeUSlot(const Vector3& outer_half_extents, double slot_width, dou
 TriangleMesh MakeThinPlate(double half_x, double half_y, double half_thickness);
 
 }  // namespace pd
+
+// ---- Shapes for the haptic demo scenes (added with haptics/) ----
+
+namespace pd {
+
+// Open-top cup: a hollow cylinder with a floor, as one closed manifold (genus
+// 0) with wall thickness. Axis z, centred at the origin, z in [-height/2,
+// height/2]; outer radius `outer_radius`, inner radius outer_radius -
+// wall_thickness, floor from the bottom up to -height/2 + floor_thickness; the
+// opening faces +z. Needs wall_thickness < outer_radius and floor_thickness <
+// height. 8 * segments triangles (segments >= 3).
+TriangleMesh MakeCup(double outer_radius, double height, double wall_thickness,
+                     double floor_thickness, int segments);
+
+// Box of `half_extents` centred at the origin with a through-hole along z for
+// peg-in-hole: round (radius `hole_half_width`, a regular polygon with
+// `segments` sides whose vertices lie on the circle) or square (half side
+// `hole_half_width`, axis-aligned). Genus 1. Needs hole_half_width <
+// min(half_extents.x, half_extents.y), segments a multiple of 4 (>= 4; >= 8 for
+// a round hole). 8 * segments triangles.
+TriangleMesh MakeBlockWithHole(const Vector3& half_extents, double hole_half_width,
+                               bool round_hole, int segments);
+
+// L-shaped bar of square-ish cross-section: a non-convex tool. Lies in the xy
+// plane, z in [-thickness/2, thickness/2]; the origin is the centre of the
+// corner square (side `width`); one arm reaches x = arm_x, the other y =
+// arm_y. Needs arm_x, arm_y > width / 2. 20 triangles.
+TriangleMesh MakeLRod(double arm_x, double arm_y, double width, double thickness);
+
+// Spoon-like stick with a bowl: a non-convex tool. The handle starts at x = 0
+// and runs along +x; an elliptic bowl (bowl_length along x, bowl_width along
+// y) ends at x ~= length. The slab has constant vertical thickness
+// `thickness` (z in [-thickness/2, thickness/2] along the handle); inside the
+// bowl outline both faces dip by up to bowl_depth, so the bowl opens toward +z.
+struct SpoonDimensions {
+  double length = 0.14;         // m, handle end to bowl tip
+  double handle_width = 0.008;  // m
+  double bowl_length = 0.045;   // m
+  double bowl_width = 0.03;     // m, > handle_width
+  double bowl_depth = 0.008;    // m
+  double thickness = 0.003;     // m
+  int segments_along = 16;      // bowl columns along x (>= 4)
+  int segments_across = 8;      // columns across y (>= 2)
+};
+// About 4 * (segments_along + 3) * segments_across triangles (~600 default).
+TriangleMesh MakeSpoon(const SpoonDimensions& dims);
+
+}  // namespace pd

@@ -52,6 +52,7 @@ Vector3 OutProject(const ModelPair& pair, const Vector3& q_from, const Vector3& 
     *touched = false;
     return q_to;
   }
+
   const double s = FirstContactAlongTranslation(pair, q_from, d);
   if (s < 0) {
     *touched = false;
@@ -70,11 +71,14 @@ struct PolyDepthSolver::Impl {
   std::vector<SupportPlaneStart> support_starts;
   std::mt19937_64 rng;
   // Warm-start state, relative to the scene (so a moving scene is fine).
-  bool has_previous = false;
+  bool has_previous = false;       // previous frame collided and was solved
+  bool has_previous_free = false;  // previous frame was collision-free
   Vector3 previous_q_S = Vector3::Zero();
   Vector3 previous_n_S = Vector3::Zero();
   RelativePose previous_X_SP;
 
+  // Where `constraints` were last localised (they are reused for regions).
+  Vector3 constraints_q_S = Vector3::Constant(1e300);
   // Best verified-free contact configuration of the current query.
   Vector3 best_q_S = Vector3::Zero();
   double best_norm = 0.0;
@@ -95,7 +99,11 @@ struct PolyDepthSolver::Impl {
     ++s.iterations;
     // Localise the contact space at q_c and in-project toward the query.
     CollectContactConstraints(pair, q_c, contact_distance, &s.constraints);
+    s.constraints_q_S = q_c;
     if (s.constraints.empty()) break;
+    // Aim strictly inside free space: an exactly touching target is
+    // ambiguous under round-off, a target `margin` clear is not.
+    for (ContactConstraint& c : s.constraints) c.c += margin;
     const MinNormResult qp = MinNormPoint(s.constraints, tol, &s.qp);
     const Vector3 q_new = qp.q;
     if (q_new.norm() >= norm_c - tol) break;  // q_c is locally optimal
@@ -137,7 +145,10 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
 
 PolyDepthSolver::~PolyDepthSolver() = default;
 
-void PolyDepthSolver::ResetWarmStart() { impl_->has_previous = false; }
+void PolyDepthSolver::ResetWarmStart() {
+  impl_->has_previous = false;
+  impl_->has_previous_free = false;
+}
 
 
 
@@ -150,10 +161,14 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   const double size = pair.size();
   const double margin = options_.separation_margin * size;
   s.iterations = 0;
+  s.constraints_q_S = Vector3::Constant(1e300);
 
   result.in_collision = InCollision(pair, Vector3::Zero());
   if (!result.in_collision) {
+    // Remember this free pose: the next contact starts from it.
     s.has_previous = false;
+    s.has_previous_free = true;
+    s.previous_X_SP = pair.X_SP;
     result.time_us = std::chrono::duration<double, std::micro>(
                          std::chrono::steady_clock::now() - t_start).count();
     return result;
@@ -179,6 +194,25 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     }
   }
 
+  // 1b. Coming from a free frame: put the probe back where it was then (a
+  // free place a short way back along the motion) and out-project from there.
+  if (coherent && options_.warm_start && !s.has_previous && s.has_previous_free &&
+      s.best_origin == Initializer::kNone) {
+    const Vector3 back = s.previous_X_SP.p_SP - pair.X_SP.p_SP;
+    const double len = back.norm();
+    if (len > 0.0) {
+      double offset = options_.contact_tol * size;
+      for (int attempt = 0; attempt < 3; ++attempt, offset *= 4.0) {
+        const Vector3 q0 = back + offset * (back / len);
+        if (InCollision(pair, q0)) continue;
+        bool touched = false;
+        const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
+        if (touched) s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
+        break;
+      }
+    }
+  }
+
   // 2. Cold starts (also the fallback when coherence found nothing).
   if (s.best_origin == Initializer::kNone) {
     s.starts.clear();
@@ -198,7 +232,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (u.norm() < 1e-9) continue;
       s.starts.push_back({SupportPlaneTranslation(pair, u.normalized()), Initializer::kRandom});
     }
-    // Out-project every start once, then iterate from the two closest.
+    // Out-project every start once, then iterate from the closest few.
     for (Start& st : s.starts) {
       bool touched = false;
       st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched);
@@ -206,7 +240,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     }
     std::sort(s.starts.begin(), s.starts.end(),
               [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });
-    for (int i = 0; i < std::min<int>(2, s.starts.size()); ++i) {
+    for (int i = 0; i < std::min<int>(options_.num_iterated_starts, s.starts.size()); ++i) {
       if (s.starts[i].contact_norm >= 1e300) break;
       s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin);
     }
@@ -244,10 +278,12 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     result.depth = s.best_norm;
     result.normal_W = s.best_norm > 0 ? Vector3(result.translation_W / s.best_norm)
                                       : Vector3::Zero();
-    CollectContactConstraints(pair, s.best_q_S, options_.contact_tol * size, &s.constraints);
+    if (s.constraints_q_S != s.best_q_S)
+      CollectContactConstraints(pair, s.best_q_S, options_.contact_tol * size, &s.constraints);
     result.num_contacts = static_cast<int>(s.constraints.size());
     GroupContactRegions(s.constraints, s.best_q_S, X_WS, 0.1 * size, &result);
   }
+  s.has_previous_free = false;
   if (valid) {
     s.has_previous = true;
     s.previous_q_S = s.best_q_S;

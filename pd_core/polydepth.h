@@ -36,10 +36,11 @@ struct PolyDepthOptions {
   // All tolerances are fractions of the pair's size (sum of bounding radii).
   double convergence_tol = 1e-5;   // stop when |q| improves less than this
   double contact_tol = 1e-4;       // feature pairs closer than this are constraints
-  double separation_margin = 1e-7; // answers are backed off by this to be strictly free
+  double separation_margin = 1e-8; // answers are backed off by this to be strictly free
   int num_maximally_clear = 3;     // best support-plane starts tried on a cold query
   bool use_centroid = true;
   int num_random = 2;              // random-direction starts on a cold query
+  int num_iterated_starts = 3;     // cold starts refined, closest contact first
   int num_sampling_directions = 64;  // fallback directional search
   bool warm_start = true;          // honour `coherent` in Solve
   uint64_t seed = 12345;

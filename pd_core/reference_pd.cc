@@ -231,40 +231,47 @@ struct Box2 {
   int tri;
 };
 
+// A contact normal in the (e1, e2, u) frame: unit and oriented along +u, or
+// zero where undefined (features parallel to u).
+struct Normal {
+  double x = 0.0, y = 0.0, h = 0.0;
+  // |u·n|: turns a gap length along u into its thickness; 1 if undefined.
+  double cos() const { return h > 0.0 ? h : 1.0; }
+};
+
+inline Normal MakeNormal(double x, double y, double h) {
+  const double norm = std::sqrt(x * x + y * y + h * h);
+  if (!(norm > 0.0)) return {};
+  const double scale = (h < 0.0 ? -1.0 : 1.0) / norm;
+  return {x * scale, y * scale, h * scale};
+}
+
+// A touching interval with the contact normal at each end. Near-ties (within
+// tol) keep the normal with the larger cosine, the conservative choice for
+// slits.
 struct Interval {
   double lo = kInf, hi = -kInf;
-  void Add(double s) {
-    lo = std::min(lo, s);
-    hi = std::max(hi, s);
+  Normal n_lo, n_hi;
+  void Add(double s, const Normal& n, double tol) {
+    if (s < lo - tol) {
+      lo = s;
+      n_lo = n;
+    } else if (s <= lo + tol) {
+      lo = std::min(lo, s);
+      if (n.cos() > n_lo.cos()) n_lo = n;
+    }
+    if (s > hi + tol) {
+      hi = s;
+      n_hi = n;
+    } else if (s >= hi - tol) {
+      hi = std::max(hi, s);
+      if (n.cos() > n_hi.cos()) n_hi = n;
+    }
   }
 };
 
 inline double Cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 inline double L1(double x, double y) { return std::abs(x) + std::abs(y); }
-
-// Height over X of the non-degenerate projected triangle t (signed doubled
-// area area2), if X lies in it within eps; barycentric weights are clamped
-// so the height is that of a point of the triangle.
-inline bool HeightOver(const Proj& X, const Proj& t0, const Proj& t1, const Proj& t2,
-                       double area2, double eps, double* h) {
-  const double sgn = area2 > 0.0 ? 1.0 : -1.0;
-  const double e0x = t1.x - t0.x, e0y = t1.y - t0.y;
-  double w2 = sgn * Cross2(e0x, e0y, X.x - t0.x, X.y - t0.y);
-  if (w2 < -eps * L1(e0x, e0y)) return false;
-  const double e1x = t2.x - t1.x, e1y = t2.y - t1.y;
-  double w0 = sgn * Cross2(e1x, e1y, X.x - t1.x, X.y - t1.y);
-  if (w0 < -eps * L1(e1x, e1y)) return false;
-  const double e2x = t0.x - t2.x, e2y = t0.y - t2.y;
-  double w1 = sgn * Cross2(e2x, e2y, X.x - t2.x, X.y - t2.y);
-  if (w1 < -eps * L1(e2x, e2y)) return false;
-  w0 = std::max(w0, 0.0);
-  w1 = std::max(w1, 0.0);
-  w2 = std::max(w2, 0.0);
-  const double sum = w0 + w1 + w2;
-  if (!(sum > 0.0)) return false;
-  *h = (w0 * t0.h + w1 * t1.h + w2 * t2.h) / sum;
-  return true;
-}
 
 // Events of point X lying on segment s0-s1 (within eps): sign * (h_X - h_seg).
 // A segment parallel to u (projected to a point) contributes both its heights.
@@ -275,8 +282,8 @@ inline void PointOnSegment(const Proj& X, const Proj& s0, const Proj& s1, double
   const double n = L1(dx, dy);
   if (n <= eps) {
     if (L1(rx, ry) <= 2.0 * eps) {
-      iv->Add(sign * (X.h - s0.h));
-      iv->Add(sign * (X.h - s1.h));
+      iv->Add(sign * (X.h - s0.h), Normal{}, eps);
+      iv->Add(sign * (X.h - s1.h), Normal{}, eps);
     }
     return;
   }
@@ -285,68 +292,153 @@ inline void PointOnSegment(const Proj& X, const Proj& s0, const Proj& s1, double
   const double tt = 2.0 * eps / n;
   if (t < -tt || t > 1.0 + tt) return;
   t = std::clamp(t, 0.0, 1.0);
-  iv->Add(sign * (X.h - (s0.h + t * (s1.h - s0.h))));
+  iv->Add(sign * (X.h - (s0.h + t * (s1.h - s0.h))), Normal{}, eps);
 }
 
-// Events of edge p0-p1 of A against edge q0-q1 of B: s = h_q - h_p.
-inline void EdgeEdge(const Proj& p0, const Proj& p1, const Proj& q0, const Proj& q1,
-                     double eps, Interval* iv) {
-  const double d1x = p1.x - p0.x, d1y = p1.y - p0.y;
-  const double d2x = q1.x - q0.x, d2y = q1.y - q0.y;
-  const double n1 = L1(d1x, d1y), n2 = L1(d2x, d2y);
-  const double denom = Cross2(d1x, d1y, d2x, d2y);
-  if (n1 > eps && n2 > eps && std::abs(denom) > 1e-12 * n1 * n2) {
-    const double rx = q0.x - p0.x, ry = q0.y - p0.y;
-    double alpha = Cross2(rx, ry, d2x, d2y) / denom;
-    double beta = Cross2(rx, ry, d1x, d1y) / denom;
-    const double ta = 2.0 * eps / n1, tb = 2.0 * eps / n2;
-    if (alpha < -ta || alpha > 1.0 + ta || beta < -tb || beta > 1.0 + tb) return;
-    alpha = std::clamp(alpha, 0.0, 1.0);
-    beta = std::clamp(beta, 0.0, 1.0);
-    iv->Add((q0.h + beta * (q1.h - q0.h)) - (p0.h + alpha * (p1.h - p0.h)));
-    return;
+// A projected triangle and what its pair tests need.
+struct TriProj {
+  Proj v[3];
+  double ex[3], ey[3], eh[3];  // edge k = v[k+1] - v[k]
+  double len1[3];              // L1 length of the projected edge k
+  Normal n;                    // face normal; undefined when flat
+  double orient = 1.0;         // sign of the projected area
+  // Thinner than eps in projection, i.e. parallel to u: its face events are
+  // replaced by events on its edges.
+  bool flat = false;
+};
+
+TriProj MakeTriProj(const Proj& p0, const Proj& p1, const Proj& p2, double eps) {
+  TriProj t;
+  t.v[0] = p0;
+  t.v[1] = p1;
+  t.v[2] = p2;
+  for (int k = 0; k < 3; ++k) {
+    const Proj& a = t.v[k];
+    const Proj& b = t.v[(k + 1) % 3];
+    t.ex[k] = b.x - a.x;
+    t.ey[k] = b.y - a.y;
+    t.eh[k] = b.h - a.h;
+    t.len1[k] = L1(t.ex[k], t.ey[k]);
   }
-  // Parallel (or point-like) projections: the overlap ends at endpoints.
-  PointOnSegment(q0, p0, p1, eps, 1.0, iv);
-  PointOnSegment(q1, p0, p1, eps, 1.0, iv);
-  PointOnSegment(p0, q0, q1, eps, -1.0, iv);
-  PointOnSegment(p1, q0, q1, eps, -1.0, iv);
+  const double area2 = Cross2(t.ex[0], t.ey[0], -t.ex[2], -t.ey[2]);
+  t.flat = std::abs(area2) <= eps * (t.len1[0] + t.len1[1] + t.len1[2]);
+  t.orient = area2 >= 0.0 ? 1.0 : -1.0;
+  if (!t.flat) {
+    const double nx = t.ey[0] * -t.eh[2] - t.eh[0] * -t.ey[2];
+    const double ny = t.eh[0] * -t.ex[2] - t.ex[0] * -t.eh[2];
+    t.n = MakeNormal(nx, ny, area2);
+  }
+  return t;
 }
 
-inline double Area2(const Proj* t) {
-  return Cross2(t[1].x - t[0].x, t[1].y - t[0].y, t[2].x - t[0].x, t[2].y - t[0].y);
+// side[k][j] = cross(edge k of t, vertex j of o - start of edge k): the
+// signed distance of o's vertex j from t's edge line k times the edge length.
+void Sides(const TriProj& t, const TriProj& o, double side[3][3]) {
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) {
+      side[k][j] = Cross2(t.ex[k], t.ey[k], o.v[j].x - t.v[k].x, o.v[j].y - t.v[k].y);
+    }
+  }
 }
-inline double PerimeterL1(const Proj* t) {
-  return L1(t[1].x - t[0].x, t[1].y - t[0].y) + L1(t[2].x - t[1].x, t[2].y - t[1].y) +
-         L1(t[0].x - t[2].x, t[0].y - t[2].y);
+
+// Is o more than eps outside an edge line of t (only the outer side counts
+// unless t is flat)? Point-like edges of a flat t have no line.
+bool Separates(const TriProj& t, const double side[3][3], double eps) {
+  for (int k = 0; k < 3; ++k) {
+    if (t.len1[k] <= eps) continue;
+    const double tol = eps * t.len1[k];
+    const double s0 = side[k][0], s1 = side[k][1], s2 = side[k][2];
+    if (!t.flat) {
+      if (t.orient * s0 < -tol && t.orient * s1 < -tol && t.orient * s2 < -tol) return true;
+    } else if ((s0 < -tol && s1 < -tol && s2 < -tol) || (s0 > tol && s1 > tol && s2 > tol)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Height of non-flat t over o's vertex j, if that vertex lies in t within
+// eps. The weights are clamped so the height is that of a point of t.
+bool HeightOver(const TriProj& t, const double side[3][3], int j, double eps, double* h) {
+  double w[3];
+  for (int k = 0; k < 3; ++k) {
+    w[k] = t.orient * side[k][j];  // weight of the vertex opposite edge k
+    if (w[k] < -eps * t.len1[k]) return false;
+    w[k] = std::max(w[k], 0.0);
+  }
+  const double sum = w[0] + w[1] + w[2];
+  if (!(sum > 0.0)) return false;
+  *h = (w[0] * t.v[2].h + w[1] * t.v[0].h + w[2] * t.v[1].h) / sum;
+  return true;
 }
 
 // The closed set of s with (a + s u) intersecting b; empty if lo > hi.
-Interval PairInterval(const Proj* a, const Proj* b, double eps) {
+Interval PairInterval(const TriProj& a, const TriProj& b, double eps) {
   Interval iv;
-  const double area_a = Area2(a), area_b = Area2(b);
-  // A projected triangle thinner than eps is parallel to u: its own face events
-  // are replaced by events on its edges.
-  const bool flat_a = std::abs(area_a) <= eps * PerimeterL1(a);
-  const bool flat_b = std::abs(area_b) <= eps * PerimeterL1(b);
+  double side_b[3][3], side_a[3][3];  // b's vertices against a's edges, and back
+  Sides(a, b, side_b);
+  if (Separates(a, side_b, eps)) return iv;
+  Sides(b, a, side_a);
+  if (Separates(b, side_a, eps)) return iv;
+
   double h;
-  for (int i = 0; i < 3; ++i) {
-    if (!flat_b) {
-      if (HeightOver(a[i], b[0], b[1], b[2], area_b, eps, &h)) iv.Add(h - a[i].h);
+  for (int j = 0; j < 3; ++j) {  // vertices of b over a
+    if (!a.flat) {
+      if (HeightOver(a, side_b, j, eps, &h)) iv.Add(b.v[j].h - h, a.n, eps);
     } else {
-      for (int k = 0; k < 3; ++k) PointOnSegment(a[i], b[k], b[(k + 1) % 3], eps, -1.0, &iv);
+      for (int k = 0; k < 3; ++k) PointOnSegment(b.v[j], a.v[k], a.v[(k + 1) % 3], eps, 1.0, &iv);
     }
   }
-  for (int j = 0; j < 3; ++j) {
-    if (!flat_a) {
-      if (HeightOver(b[j], a[0], a[1], a[2], area_a, eps, &h)) iv.Add(b[j].h - h);
+  for (int k = 0; k < 3; ++k) {  // vertices of a over b
+    if (!b.flat) {
+      if (HeightOver(b, side_a, k, eps, &h)) iv.Add(h - a.v[k].h, b.n, eps);
     } else {
-      for (int k = 0; k < 3; ++k) PointOnSegment(b[j], a[k], a[(k + 1) % 3], eps, 1.0, &iv);
+      for (int j = 0; j < 3; ++j) PointOnSegment(a.v[k], b.v[j], b.v[(j + 1) % 3], eps, -1.0, &iv);
     }
   }
-  for (int i = 0; i < 3; ++i) {
+
+  for (int k = 0; k < 3; ++k) {
+    const int k1 = (k + 1) % 3;
     for (int j = 0; j < 3; ++j) {
-      EdgeEdge(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3], eps, &iv);
+      const int j1 = (j + 1) % 3;
+      // Edge a_k crosses edge b_j where the side functions of each edge line,
+      // linear along the other edge, vanish: alpha = fa0 / (fa0 - fa1) along
+      // a_k and beta = fb0 / (fb0 - fb1) along b_j.
+      const double fa0 = side_a[j][k], fa1 = side_a[j][k1];
+      const double fb0 = side_b[k][j], fb1 = side_b[k][j1];
+      const double da = fa0 - fa1, db = fb0 - fb1;
+      const double n1 = a.len1[k], n2 = b.len1[j];
+      if (n1 > eps && n2 > eps) {
+        // Quick reject: one edge lies more than eps to one side of the other's line.
+        const double tol_a = eps * n1, tol_b = eps * n2;
+        if ((fb0 > tol_a && fb1 > tol_a) || (fb0 < -tol_a && fb1 < -tol_a)) continue;
+        if ((fa0 > tol_b && fa1 > tol_b) || (fa0 < -tol_b && fa1 < -tol_b)) continue;
+      }
+      const double parallel_tol = 1e-12 * n1 * n2;
+      if (n1 > eps && n2 > eps && std::abs(da) > parallel_tol && std::abs(db) > parallel_tol) {
+        // Tolerances of 2 eps along each edge, scaled by the denominators
+        // so that most pairs are rejected without a division.
+        const double alpha_s = da > 0.0 ? fa0 : -fa0, abs_da = std::abs(da);
+        const double beta_s = db > 0.0 ? fb0 : -fb0, abs_db = std::abs(db);
+        const double ta = 2.0 * eps / n1 * abs_da, tb = 2.0 * eps / n2 * abs_db;
+        if (alpha_s < -ta || alpha_s > abs_da + ta || beta_s < -tb || beta_s > abs_db + tb) {
+          continue;
+        }
+        const double alpha = std::clamp(alpha_s / abs_da, 0.0, 1.0);
+        const double beta = std::clamp(beta_s / abs_db, 0.0, 1.0);
+        // The contact normal is a_k x b_j.
+        const double nx = a.ey[k] * b.eh[j] - a.eh[k] * b.ey[j];
+        const double ny = a.eh[k] * b.ex[j] - a.ex[k] * b.eh[j];
+        const double nh = a.ex[k] * b.ey[j] - a.ey[k] * b.ex[j];
+        iv.Add((b.v[j].h + beta * b.eh[j]) - (a.v[k].h + alpha * a.eh[k]),
+               MakeNormal(nx, ny, nh), eps);
+      } else {
+        // Parallel (or point-like) projections: the overlap ends at endpoints.
+        PointOnSegment(b.v[j], a.v[k], a.v[k1], eps, 1.0, &iv);
+        PointOnSegment(b.v[j1], a.v[k], a.v[k1], eps, 1.0, &iv);
+        PointOnSegment(a.v[k], b.v[j], b.v[j1], eps, -1.0, &iv);
+        PointOnSegment(a.v[k1], b.v[j], b.v[j1], eps, -1.0, &iv);
+      }
     }
   }
   return iv;
@@ -355,24 +447,29 @@ Interval PairInterval(const Proj* a, const Proj* b, double eps) {
 // Per-direction buffers, reused across directions of one query.
 struct DirectionalScratch {
   std::vector<Proj> proj_P, proj_S;
+  std::vector<TriProj> tris_P, tris_S;
   std::vector<Box2> boxes_P, boxes_S;
+  std::vector<std::vector<Box2>> bands_P, bands_S;
   std::vector<int> active_P, active_S;
-  std::vector<std::pair<double, double>> intervals;
+  std::vector<Interval> intervals;
 };
 
 void Project(const PlacedMesh& m, const Vector3& e1, const Vector3& e2, const Vector3& u,
-             double eps, std::vector<Proj>* proj, std::vector<Box2>* boxes) {
+             double eps, std::vector<Proj>* proj, std::vector<TriProj>* tris,
+             std::vector<Box2>* boxes) {
   proj->resize(m.p_OV.size());
   for (size_t v = 0; v < m.p_OV.size(); ++v) {
     const Vector3& p = m.p_OV[v];
     (*proj)[v] = {p.dot(e1), p.dot(e2), p.dot(u)};
   }
   boxes->resize(m.triangles->size());
+  tris->resize(m.triangles->size());
   for (int t = 0; t < m.num_triangles(); ++t) {
     const auto& tri = (*m.triangles)[t];
     const Proj& a = (*proj)[tri[0]];
     const Proj& b = (*proj)[tri[1]];
     const Proj& c = (*proj)[tri[2]];
+    (*tris)[t] = MakeTriProj(a, b, c, eps);
     (*boxes)[t] = {std::min({a.x, b.x, c.x}) - eps, std::max({a.x, b.x, c.x}) + eps,
                    std::min({a.y, b.y, c.y}) - eps, std::max({a.y, b.y, c.y}) + eps,
                    std::min({a.h, b.h, c.h}),       std::max({a.h, b.h, c.h}),
@@ -380,6 +477,47 @@ void Project(const PlacedMesh& m, const Vector3& e1, const Vector3& e2, const Ve
   }
   std::sort(boxes->begin(), boxes->end(),
             [](const Box2& l, const Box2& r) { return l.x0 < r.x0; });
+}
+
+// Horizontal bands of equal height over the y range both meshes share.
+struct Band {
+  double y_min = 0.0, inv_height = 0.0;
+  int count = 0;
+  int Of(double y) const {
+    return std::clamp(static_cast<int>((y - y_min) * inv_height), 0, count - 1);
+  }
+  void Insert(const Box2& box, std::vector<std::vector<Box2>>* bands) const {
+    if (count == 0) return;
+    const double y_max = y_min + count / inv_height;
+    if (box.y1 < y_min || box.y0 > y_max) return;  // meets nothing of the other mesh
+    for (int k = Of(box.y0), end = Of(box.y1); k <= end; ++k) (*bands)[k].push_back(box);
+  }
+};
+
+// Bands about twice the mean box height: most boxes span one or two.
+Band MakeBands(const std::vector<Box2>& a, const std::vector<Box2>& b) {
+  Band band;
+  if (a.empty() || b.empty()) return band;
+  double a0 = kInf, a1 = -kInf, b0 = kInf, b1 = -kInf, height_sum = 0.0;
+  for (const Box2& box : a) {
+    a0 = std::min(a0, box.y0);
+    a1 = std::max(a1, box.y1);
+    height_sum += box.y1 - box.y0;
+  }
+  for (const Box2& box : b) {
+    b0 = std::min(b0, box.y0);
+    b1 = std::max(b1, box.y1);
+    height_sum += box.y1 - box.y0;
+  }
+  const double y0 = std::max(a0, b0), y1 = std::min(a1, b1);
+  if (!(y1 >= y0)) return band;
+  constexpr int kMaxBands = 1024;
+  const double mean_height = height_sum / static_cast<double>(a.size() + b.size());
+  const double height = std::max(2.0 * mean_height, (y1 - y0) / kMaxBands);
+  band.y_min = y0;
+  band.count = std::clamp(static_cast<int>(std::ceil((y1 - y0) / height)), 1, kMaxBands);
+  band.inv_height = band.count / std::max(y1 - y0, std::numeric_limits<double>::min());
+  return band;
 }
 
 // Unit vectors e1, e2 completing u to a right-handed frame; exact for axes.
@@ -392,51 +530,87 @@ void Complete(const Vector3& u, Vector3* e1, Vector3* e2) {
 struct Exit {
   bool colliding = false;  // at s = 0
   double distance = 0.0;   // first free s >= 0 (m), 0 if not colliding
+  // Unit contact normal where P leaves S, in world, oriented along u; zero if
+  // undefined. Moving along it is locally the shortest way off that contact.
+  Vector3 normal_W = Vector3::Zero();
 };
 
 // known_colliding skips the containment test at s = 0 when the caller already
-// knows P collides there.
+// knows P collides there. With a finite cutoff (m) the caller only needs exits
+// below it: pairs that touch only beyond it are skipped, and an exit at or
+// beyond it is reported as infinity.
 Exit DirectionalExit(const PairGeometry& g, const Vector3& u, double slit_tol_abs,
-                     bool known_colliding, DirectionalScratch* sc) {
+                     bool known_colliding, double cutoff, DirectionalScratch* sc) {
   Vector3 e1, e2;
   Complete(u, &e1, &e2);
   const double eps = g.eps_len;
-  Project(g.P, e1, e2, u, eps, &sc->proj_P, &sc->boxes_P);
-  Project(g.S, e1, e2, u, eps, &sc->proj_S, &sc->boxes_S);
+  Project(g.P, e1, e2, u, eps, &sc->proj_P, &sc->tris_P, &sc->boxes_P);
+  Project(g.S, e1, e2, u, eps, &sc->proj_S, &sc->tris_S, &sc->boxes_S);
+
+  // Sort-and-sweep along x within bands of y (a plain sweep would compare
+  // every pair in a column of the projection). Boxes go into each band they
+  // span; a pair is handled in the band holding the larger of its y0.
+  const Band bands = MakeBands(sc->boxes_P, sc->boxes_S);
+  for (auto* b : {&sc->bands_P, &sc->bands_S}) {
+    if (static_cast<int>(b->size()) < bands.count) b->resize(bands.count);
+    for (int k = 0; k < bands.count; ++k) (*b)[k].clear();
+  }
+  for (const Box2& box : sc->boxes_P) bands.Insert(box, &sc->bands_P);
+  for (const Box2& box : sc->boxes_S) bands.Insert(box, &sc->bands_S);
 
   // Intervals reaching s >= 0; the others are irrelevant to the exit.
   sc->intervals.clear();
   bool touching_at_zero = false;
-  SweepPairs(sc->boxes_P, sc->boxes_S, &sc->active_P, &sc->active_S,
-             [&](const Box2& bp, const Box2& bs) {
-               if (bs.y0 > bp.y1 || bp.y0 > bs.y1) return false;
-               if (bs.h1 - bp.h0 < -eps) return false;  // hi < 0 for sure
-               const auto& tp = (*g.P.triangles)[bp.tri];
-               const auto& ts = (*g.S.triangles)[bs.tri];
-               const Proj a[3] = {sc->proj_P[tp[0]], sc->proj_P[tp[1]], sc->proj_P[tp[2]]};
-               const Proj b[3] = {sc->proj_S[ts[0]], sc->proj_S[ts[1]], sc->proj_S[ts[2]]};
-               const Interval iv = PairInterval(a, b, eps);
-               if (iv.lo <= iv.hi && iv.hi >= 0.0) {
-                 sc->intervals.emplace_back(iv.lo, iv.hi);
-                 if (iv.lo <= 0.0) touching_at_zero = true;
-               }
-               return false;
-             });
+  bool pruned = false;  // some pair touches only beyond the cutoff
+  for (int band = 0; band < bands.count; ++band) {
+    SweepPairs(sc->bands_P[band], sc->bands_S[band], &sc->active_P, &sc->active_S,
+               [&](const Box2& bp, const Box2& bs) {
+                 if (bs.y0 > bp.y1 || bp.y0 > bs.y1) return false;
+                 if (bands.Of(std::max(bp.y0, bs.y0)) != band) return false;
+                 if (bs.h1 - bp.h0 < -eps) return false;  // hi < 0 for sure
+                 if (bs.h0 - bp.h1 > cutoff + eps) {      // lo > cutoff for sure
+                   pruned = true;
+                   return false;
+                 }
+                 const Interval iv = PairInterval(sc->tris_P[bp.tri], sc->tris_S[bs.tri], eps);
+                 if (iv.lo > iv.hi || iv.hi < 0.0) return false;
+                 if (iv.lo > cutoff) {
+                   pruned = true;
+                 } else {
+                   sc->intervals.push_back(iv);
+                   if (iv.lo <= 0.0) touching_at_zero = true;
+                 }
+                 return false;
+               });
+  }
 
   Exit exit;
   exit.colliding = known_colliding || touching_at_zero || Contained(g, Vector3::Zero());
   if (!exit.colliding) return exit;
 
-  // Merge, closing gaps thinner than the slit tolerance.
+  // Merge, closing slits: gaps whose length along u times the larger normal
+  // cosine at their ends (their thickness, for parallel walls) is below the
+  // slit tolerance. Intervals that touch (within eps) leave no gap at all.
   auto& iv = sc->intervals;
-  std::sort(iv.begin(), iv.end());
+  std::sort(iv.begin(), iv.end(),
+            [](const Interval& l, const Interval& r) { return l.lo < r.lo; });
   size_t n = 0;
   for (size_t k = 0; k < iv.size(); ++k) {
-    if (n > 0 && iv[k].first - iv[n - 1].second < slit_tol_abs) {
-      iv[n - 1].second = std::max(iv[n - 1].second, iv[k].second);
-    } else {
-      iv[n++] = iv[k];
+    if (n > 0) {
+      Interval& last = iv[n - 1];
+      const double gap = iv[k].lo - last.hi;
+      if (gap <= eps || gap * std::max(last.n_hi.cos(), iv[k].n_lo.cos()) < slit_tol_abs) {
+        if (iv[k].hi > last.hi + eps) {
+          last.hi = iv[k].hi;
+          last.n_hi = iv[k].n_hi;
+        } else if (iv[k].hi >= last.hi - eps) {
+          last.hi = std::max(last.hi, iv[k].hi);
+          if (iv[k].n_hi.cos() > last.n_hi.cos()) last.n_hi = iv[k].n_hi;
+        }
+        continue;
+      }
     }
+    iv[n++] = iv[k];
   }
   iv.resize(n);
 
@@ -445,31 +619,85 @@ Exit DirectionalExit(const PairGeometry& g, const Vector3& u, double slit_tol_ab
   // The first interval either contains 0 or, if P collides at 0 without
   // touching (containment), follows a gap that is not free.
   double s = 0.0;
+  Normal n_s;
   size_t k = 0;
   if (!iv.empty()) {
-    s = iv[0].second;
+    s = iv[0].hi;
+    n_s = iv[0].n_hi;
     k = 1;
   }
-  for (; k < iv.size(); ++k) {
-    const double mid = 0.5 * (s + iv[k].first);
-    if (!Contained(g, mid * u)) break;
-    s = iv[k].second;
+  auto exit_at = [&](double distance) {
+    exit.distance = distance;
+    if (n_s.h > 0.0) exit.normal_W = n_s.x * e1 + n_s.y * e2 + n_s.h * u;
+    return exit;
+  };
+  for (; k < iv.size() && s < cutoff; ++k) {
+    const double mid = 0.5 * (s + iv[k].lo);
+    if (!Contained(g, mid * u)) return exit_at(s);
+    s = iv[k].hi;
+    n_s = iv[k].n_hi;
   }
+  exit.distance = kInf;
+  if (s >= cutoff) return exit;
   // Past the last interval the surfaces never meet again and P ends up far
   // away, so that gap is free.
-  exit.distance = s;
+  if (!pruned) return exit_at(s);
+  // The last gap runs past the cutoff to a skipped interval. If it may be a
+  // slit, decide with all pairs.
+  if ((cutoff - s) * n_s.cos() < slit_tol_abs) {
+    return DirectionalExit(g, u, slit_tol_abs, known_colliding, kInf, sc);
+  }
+  if (!Contained(g, 0.5 * (s + cutoff) * u)) return exit_at(s);
   return exit;
 }
 
 // ---------------------------------------------------------------------------
 // Triangle-triangle intersection for the collision test (closed triangles).
+// Orientation signs decide everything; they are recomputed in quad precision
+// when the double result is within its rounding error bound, so a segment
+// sliding exactly in a triangle's plane is not misjudged.
+
+#if defined(__SIZEOF_FLOAT128__)
+using Wide = __float128;
+#else
+using Wide = long double;  // quad precision where long double is (e.g. aarch64)
+#endif
 
 struct P2 {
   double x, y;
 };
 
-inline double Orient2(const P2& a, const P2& b, const P2& c) {
-  return Cross2(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y);
+// (b - a) x (c - a), sign exact up to quad-precision rounding.
+double Orient2(const P2& a, const P2& b, const P2& c) {
+  const double bx = b.x - a.x, by = b.y - a.y, cx = c.x - a.x, cy = c.y - a.y;
+  const double det = bx * cy - by * cx;
+  if (std::abs(det) > 1e-15 * (std::abs(bx * cy) + std::abs(by * cx))) return det;
+  const Wide wbx = Wide(b.x) - Wide(a.x), wby = Wide(b.y) - Wide(a.y);
+  const Wide wcx = Wide(c.x) - Wide(a.x), wcy = Wide(c.y) - Wide(a.y);
+  return static_cast<double>(wbx * wcy - wby * wcx);
+}
+
+// (b - a) x (c - a) . (d - a), sign exact up to quad-precision rounding.
+double Orient3(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d) {
+  const Vector3 ba = b - a, ca = c - a, da = d - a;
+  const double m0 = ca.y() * da.z(), m1 = ca.z() * da.y();
+  const double m2 = ca.z() * da.x(), m3 = ca.x() * da.z();
+  const double m4 = ca.x() * da.y(), m5 = ca.y() * da.x();
+  const double det = ba.x() * (m0 - m1) + ba.y() * (m2 - m3) + ba.z() * (m4 - m5);
+  const double permanent = std::abs(ba.x()) * (std::abs(m0) + std::abs(m1)) +
+                           std::abs(ba.y()) * (std::abs(m2) + std::abs(m3)) +
+                           std::abs(ba.z()) * (std::abs(m4) + std::abs(m5));
+  if (std::abs(det) > 1e-15 * permanent) return det;
+  Wide w[3][3];
+  for (int i = 0; i < 3; ++i) {
+    w[0][i] = Wide(b[i]) - Wide(a[i]);
+    w[1][i] = Wide(c[i]) - Wide(a[i]);
+    w[2][i] = Wide(d[i]) - Wide(a[i]);
+  }
+  const Wide wdet = w[0][0] * (w[1][1] * w[2][2] - w[1][2] * w[2][1]) +
+                    w[0][1] * (w[1][2] * w[2][0] - w[1][0] * w[2][2]) +
+                    w[0][2] * (w[1][0] * w[2][1] - w[1][1] * w[2][0]);
+  return static_cast<double>(wdet);
 }
 
 // c is collinear with a-b: is it within the segment?
@@ -488,6 +716,7 @@ bool SegmentsIntersect2(const P2& a, const P2& b, const P2& c, const P2& d) {
 }
 
 // Segment p-q lying in the plane of triangle t (normal n): do they meet?
+// Dropping the normal's largest axis projects without degenerating.
 bool CoplanarSegmentHitsTriangle(const Vector3& p, const Vector3& q, const Vector3* t,
                                  const Vector3& n) {
   int drop = 0;
@@ -501,14 +730,10 @@ bool CoplanarSegmentHitsTriangle(const Vector3& p, const Vector3& q, const Vecto
          SegmentsIntersect2(p2, q2, t2, t0);
 }
 
-inline double Orient3(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d) {
-  return (b - a).cross(c - a).dot(d - a);
-}
-
-// Segment p-q against non-degenerate triangle t with normal n.
-bool SegmentHitsTriangle(const Vector3& p, const Vector3& q, const Vector3* t,
-                         const Vector3& n) {
-  const double op = n.dot(p - t[0]), oq = n.dot(q - t[0]);
+// Segment p-q against non-degenerate triangle t (normal n), given the
+// orientations op, oq of p and q against t's plane.
+bool SegmentHitsTriangle(const Vector3& p, const Vector3& q, double op, double oq,
+                         const Vector3* t, const Vector3& n) {
   if ((op > 0 && oq > 0) || (op < 0 && oq < 0)) return false;
   if (op == 0 && oq == 0) return CoplanarSegmentHitsTriangle(p, q, t, n);
   // The line p-q passes through the triangle iff it turns the same way
@@ -524,6 +749,18 @@ inline bool Degenerate(const Vector3* t, const Vector3& n) {
   return !(n.norm() > 1e-14 * scale);
 }
 
+// Orientations of the points p against the plane of t; false if all three
+// are strictly on one side.
+bool Straddles(const Vector3* t, const Vector3* p, double o[3]) {
+  int pos = 0, neg = 0;
+  for (int i = 0; i < 3; ++i) {
+    o[i] = Orient3(t[0], t[1], t[2], p[i]);
+    pos += o[i] > 0;
+    neg += o[i] < 0;
+  }
+  return pos < 3 && neg < 3;
+}
+
 // Non-coplanar triangles meet iff an edge of one meets the other (the ends of
 // their common segment lie on edges); coplanar ones iff an edge of one meets
 // the other's region, which the in-plane segment test covers.
@@ -532,27 +769,13 @@ bool TrianglesIntersect(const Vector3* a, const Vector3* b) {
   const Vector3 nb = (b[1] - b[0]).cross(b[2] - b[0]);
   const bool deg_a = Degenerate(a, na), deg_b = Degenerate(b, nb);
   if (deg_a && deg_b) return false;
-  if (!deg_b) {
-    int pos = 0, neg = 0;
-    for (int i = 0; i < 3; ++i) {
-      const double d = nb.dot(a[i] - b[0]);
-      pos += d > 0;
-      neg += d < 0;
-    }
-    if (pos == 3 || neg == 3) return false;
-  }
-  if (!deg_a) {
-    int pos = 0, neg = 0;
-    for (int i = 0; i < 3; ++i) {
-      const double d = na.dot(b[i] - a[0]);
-      pos += d > 0;
-      neg += d < 0;
-    }
-    if (pos == 3 || neg == 3) return false;
-  }
+  double oa[3], ob[3];  // a's vertices against b's plane, and back
+  if (!deg_b && !Straddles(b, a, oa)) return false;
+  if (!deg_a && !Straddles(a, b, ob)) return false;
   for (int i = 0; i < 3; ++i) {
-    if (!deg_b && SegmentHitsTriangle(a[i], a[(i + 1) % 3], b, nb)) return true;
-    if (!deg_a && SegmentHitsTriangle(b[i], b[(i + 1) % 3], a, na)) return true;
+    const int i1 = (i + 1) % 3;
+    if (!deg_b && SegmentHitsTriangle(a[i], a[i1], oa[i], oa[i1], b, nb)) return true;
+    if (!deg_a && SegmentHitsTriangle(b[i], b[i1], ob[i], ob[i1], a, na)) return true;
   }
   return false;
 }
@@ -619,7 +842,7 @@ double DirectionalPenetration(const TriangleMesh& probe, const Isometry3& X_WP,
   if (!(norm > 0.0)) return 0.0;
   const PairGeometry g = MakePair(probe, X_WP, probe_closed, scene, X_WS, scene_closed);
   DirectionalScratch scratch;
-  return DirectionalExit(g, u_W / norm, slit_tol_abs, false, &scratch).distance;
+  return DirectionalExit(g, u_W / norm, slit_tol_abs, false, kInf, &scratch).distance;
 }
 
 ReferencePdResult ReferencePenetrationDepth(const TriangleMesh& probe, const Isometry3& X_WP,
@@ -637,45 +860,69 @@ ReferencePdResult ReferencePenetrationDepth(const TriangleMesh& probe, const Iso
   }
   if (dirs.empty()) dirs.push_back(Vector3::UnitZ());
 
-  const Exit first = DirectionalExit(g, dirs[0], slit_tol_abs, false, &scratch);
+  const Exit first = DirectionalExit(g, dirs[0], slit_tol_abs, false, kInf, &scratch);
   result.directions_evaluated = 1;
   if (!first.colliding) return result;
   result.in_collision = true;
 
-  auto evaluate = [&](const Vector3& u) {
+  // Exits at or beyond `cutoff` come back as infinity, which saves the pairs
+  // that only touch beyond it.
+  auto evaluate = [&](const Vector3& u, double cutoff) {
     ++result.directions_evaluated;
-    return DirectionalExit(g, u, slit_tol_abs, true, &scratch).distance;
+    return DirectionalExit(g, u, slit_tol_abs, true, cutoff, &scratch);
   };
+  // Sphere sweep: exits up to kStartSlack times the best so far are kept
+  // exactly, as candidate starts for the refinement.
+  constexpr double kStartSlack = 1.5;
   std::vector<std::pair<double, int>> scored;
+  std::vector<Vector3> normals(dirs.size(), Vector3::Zero());
   scored.reserve(dirs.size());
   scored.emplace_back(first.distance, 0);
+  normals[0] = first.normal_W;
+  double best = first.distance;
   for (int i = 1; i < static_cast<int>(dirs.size()); ++i) {
-    scored.emplace_back(evaluate(dirs[i]), i);
+    const Exit e = evaluate(dirs[i], kStartSlack * best);
+    best = std::min(best, e.distance);
+    scored.emplace_back(e.distance, i);
+    normals[i] = e.normal_W;
   }
   std::sort(scored.begin(), scored.end());
-  double best = scored[0].first;
   Vector3 best_u = dirs[scored[0].second];
 
   // Refine from the best directions that are not neighbours of one another.
   const double spacing = std::sqrt(4.0 * M_PI / std::max(options.num_directions, 1));
   const double min_separation_cos = std::cos(std::min(2.0 * spacing, M_PI));
-  std::vector<Vector3> starts;
-  std::vector<double> start_values;
+  std::vector<std::pair<double, int>> starts;
   for (const auto& [value, i] : scored) {
-    if (static_cast<int>(starts.size()) >= options.num_refine_starts) break;
+    if (static_cast<int>(starts.size()) >= options.num_refine_starts || value == kInf) break;
     bool distinct = true;
-    for (const Vector3& s : starts) distinct &= s.dot(dirs[i]) < min_separation_cos;
-    if (distinct) {
-      starts.push_back(dirs[i]);
-      start_values.push_back(value);
+    for (const auto& start : starts) {
+      distinct &= dirs[start.second].dot(dirs[i]) < min_separation_cos;
     }
+    if (distinct) starts.emplace_back(value, i);
   }
-  for (size_t k = 0; k < starts.size(); ++k) {
-    // Opportunistic pattern search on the sphere with a shrinking angular step.
-    Vector3 u = starts[k];
-    double f = start_values[k];
+  for (const auto& [start_value, start] : starts) {
+    // Jump to the contact normal at the exit (for a single planar contact
+    // that is the local optimum), else an opportunistic pattern search on
+    // the sphere with a shrinking angular step.
+    Vector3 u = dirs[start], n = normals[start];
+    double f = start_value;
+    auto normal_is_new = [&]() { return n.squaredNorm() > 0.0 && u.dot(n) < 1.0 - 1e-15; };
+    bool try_normal = normal_is_new();
     double step = spacing;
     for (int evals = 0; evals < options.refine_iterations;) {
+      if (try_normal) {
+        try_normal = false;
+        const Exit e = evaluate(n, f);
+        ++evals;
+        if (e.distance < f) {
+          u = n;
+          f = e.distance;
+          n = e.normal_W;
+          try_normal = normal_is_new();
+        }
+        continue;
+      }
       Vector3 e1, e2;
       Complete(u, &e1, &e2);
       const Vector3 moves[4] = {e1, e2, -e1, -e2};
@@ -683,11 +930,13 @@ ReferencePdResult ReferencePenetrationDepth(const TriangleMesh& probe, const Iso
       for (const Vector3& m : moves) {
         if (evals >= options.refine_iterations) break;
         const Vector3 v = (std::cos(step) * u + std::sin(step) * m).normalized();
-        const double fv = evaluate(v);
+        const Exit e = evaluate(v, f);
         ++evals;
-        if (fv < f) {
+        if (e.distance < f) {
           u = v;
-          f = fv;
+          f = e.distance;
+          n = e.normal_W;
+          try_normal = normal_is_new();
           improved = true;
           break;
         }

@@ -1,0 +1,420 @@
+// PolyDepth against exact answers, an independent convex PD (FCL/libccd EPA)
+// and the slow reference PD; validity, scale invariance, coherence and
+// thread safety. Tolerances are stated next to each check.
+#include <gtest/gtest.h>
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <thread>
+
+#include "pd_core/make_shapes.h"
+#include "pd_core/polydepth.h"
+#include "pd_core/reference_pd.h"
+
+namespace pd {
+namespace {
+
+using Model = std::shared_ptr<const CollisionModel>;
+
+Isometry3 Pose(const Vector3& p, const Quaternion& q = Quaternion::Identity()) {
+  Isometry3 X = Isometry3::Identity();
+  X.linear() = q.normalized().toRotationMatrix();
+  X.translation() = p;
+  return X;
+}
+
+// The mesh as an FCL convex polytope, so FCL runs GJK/EPA (libccd) on it
+// rather than a shape-specific routine.
+std::shared_ptr<fcl::Convexd> ToFclConvex(const TriangleMesh& mesh) {
+  auto verts = std::make_shared<std::vector<fcl::Vector3d>>(mesh.vertices.begin(), mesh.vertices.end());
+  auto faces = std::make_shared<std::vector<int>>();
+  for (const auto& t : mesh.triangles) faces->insert(faces->end(), {3, t[0], t[1], t[2]});
+  return std::make_shared<fcl::Convexd>(verts, mesh.num_triangles(), faces);
+}
+
+// Independent check: the probe moved by the answer is free (reference code,
+// which shares nothing with the fast path).
+bool FreeAfter(const Model& P, const Isometry3& X_WP, const Model& S, const Isometry3& X_WS,
+               const PenetrationResult& r) {
+  return !ReferenceInCollision(P->mesh(), X_WP, P->closed(), S->mesh(), X_WS, S->closed(),
+                               r.translation_W);
+}
+
+// Agreement with an FCL EPA answer, or proof that the EPA answer is wrong:
+// where EPA reports a shallower depth, moving the probe by it (either sign of
+// its normal) must leave the probe colliding; where it reports a deeper one,
+// our answer is verified free, so EPA overestimated. FCL's EPA does both on
+// these cases, which is why it cannot serve as an oracle on its own.
+void ExpectMatchesOrRefutes(const Model& P, const Isometry3& X_WP, const Model& S,
+                            const Isometry3& X_WS, const PenetrationResult& r,
+                            const fcl::Contactd& contact, const std::string& label,
+                            double rel_tol = 1e-6) {
+  // FCL's own GJK/EPA reports depth with a negative sign (signed distance).
+  const double fcl_depth = std::abs(contact.penetration_depth);
+  EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r)) << label;
+  if (std::abs(r.depth - fcl_depth) <= 1e-6) return;  // EPA converges to ~1e-7
+  if (fcl_depth < r.depth) {
+    for (double sign : {1.0, -1.0}) {
+      const Vector3 t = sign * contact.normal.normalized() * fcl_depth * (1 + 1e-9);
+      EXPECT_TRUE(ReferenceInCollision(P->mesh(), X_WP, true, S->mesh(), X_WS, true, t))
+          << label << ": FCL's shallower answer " << fcl_depth << " is free; ours " << r.depth;
+    }
+  }
+  // And the slow exact reference (exact for convex pairs) agrees with us.
+  const ReferencePdResult ref =
+      ReferencePenetrationDepth(P->mesh(), X_WP, true, S->mesh(), X_WS, true);
+  EXPECT_NEAR(r.depth, ref.depth, rel_tol * ref.depth) << label;
+}
+
+TEST(PolyDepth, FreeConfigurationHasZeroDepth) {
+  Model P = CollisionModel::Build(MakeBox(Vector3(0.5, 0.5, 0.5)));
+  Model S = CollisionModel::Build(MakeBox(Vector3(1, 1, 1)));
+  PolyDepthSolver solver(P, S);
+  const PenetrationResult r = solver.Solve(Pose(Vector3(2.0, 0, 0)), Pose(Vector3::Zero()));
+  EXPECT_FALSE(r.in_collision);
+  EXPECT_EQ(r.depth, 0.0);
+  EXPECT_EQ(r.initializer, Initializer::kNone);
+}
+
+// Axis-aligned boxes: PD is the smallest axis overlap, exactly.
+TEST(PolyDepth, BoxesInAnyOverlapMatchAnalyticDepth) {
+  const Vector3 hp(0.5, 0.3, 0.2), hs(1.0, 0.8, 0.6);
+  Model P = CollisionModel::Build(MakeBox(hp));
+  Model S = CollisionModel::Build(MakeBox(hs));
+  PolyDepthSolver solver(P, S);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int i = 0; i < 40; ++i) {
+    const Vector3 c(U(rng) * 1.4, U(rng) * 1.0, U(rng) * 0.75);
+    double expected = 1e300;
+    Vector3 dir = Vector3::Zero();
+    bool overlap = true;
+    for (int k = 0; k < 3; ++k) {
+      const double o = hp[k] + hs[k] - std::abs(c[k]);
+      if (o <= 0) overlap = false;
+      // Either exit side along axis k.
+      const double out_pos = hs[k] + hp[k] - c[k], out_neg = hs[k] + hp[k] + c[k];
+      if (out_pos < expected) expected = out_pos, dir = Vector3::Unit(k);
+      if (out_neg < expected) expected = out_neg, dir = -Vector3::Unit(k);
+    }
+    const Isometry3 X_WP = Pose(c), X_WS = Pose(Vector3::Zero());
+    const PenetrationResult r = solver.Solve(X_WP, X_WS);
+    ASSERT_EQ(r.in_collision, overlap) << "case " << i;
+    if (!overlap) continue;
+    EXPECT_TRUE(r.valid);
+    EXPECT_NEAR(r.depth, expected, 1e-6 * expected) << "case " << i << " c=" << c.transpose();
+    EXPECT_GT(r.normal_W.dot(dir), 0.999) << "case " << i;
+    EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r)) << "case " << i;
+  }
+}
+
+TEST(PolyDepth, FaceContactRegionCarriesTheFullDepth) {
+  Model P = CollisionModel::Build(MakeBox(Vector3(0.2, 0.2, 0.2)));
+  Model S = CollisionModel::Build(MakeBox(Vector3(1, 1, 0.5)));
+  PolyDepthSolver solver(P, S);
+  // Probe pressed 0.05 into the top face at an off-centre spot.
+  const PenetrationResult r = solver.Solve(Pose(Vector3(0.3, -0.2, 0.65)), Pose(Vector3::Zero()));
+  ASSERT_TRUE(r.in_collision);
+  EXPECT_NEAR(r.depth, 0.05, 1e-6);
+  ASSERT_GE(r.num_regions, 1);
+  const ContactRegion& region = r.regions[0];
+  EXPECT_GT(region.n_W.z(), 0.999);
+  EXPECT_NEAR(region.local_depth, 0.05, 1e-6);
+  // The contact point lies on the probe's bottom face, inside its footprint.
+  EXPECT_NEAR(region.p_W.z(), 0.45, 1e-6);
+  EXPECT_NEAR(region.p_W.x(), 0.3, 0.2 + 1e-9);
+  EXPECT_NEAR(region.p_W.y(), -0.2, 0.2 + 1e-9);
+}
+
+// Convex pairs against FCL's own GJK/EPA (GST_INDEP). FCL 0.7's libccd
+// solver is not used: its penetration depth overestimates by up to 40% on
+// these cases (it is not the minimum translation).
+TEST(PolyDepth, RotatedBoxesMatchFclEpa) {
+  const Vector3 hp(0.4, 0.25, 0.15), hs(0.7, 0.5, 0.3);
+  Model P = CollisionModel::Build(MakeBox(hp));
+  Model S = CollisionModel::Build(MakeBox(hs));
+  PolyDepthSolver solver(P, S);
+  auto fcl_P = ToFclConvex(P->mesh());
+  auto fcl_S = ToFclConvex(S->mesh());
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int checked = 0;
+  for (int i = 0; i < 60 && checked < 25; ++i) {
+    const Isometry3 X_WP = Pose(Vector3(U(rng), U(rng), U(rng)) * 0.6,
+                                Quaternion(U(rng), U(rng), U(rng), U(rng)));
+    const Isometry3 X_WS = Pose(Vector3::Zero(), Quaternion(Eigen::AngleAxisd(0.3, Vector3::UnitY())));
+    fcl::CollisionObjectd oP(fcl_P, X_WP), oS(fcl_S, X_WS);
+    fcl::CollisionRequestd request(1, true);
+    request.gjk_solver_type = fcl::GST_INDEP;
+    fcl::CollisionResultd fcl_result;
+    fcl::collide(&oP, &oS, request, fcl_result);
+    const PenetrationResult r = solver.Solve(X_WP, X_WS);
+    ASSERT_EQ(r.in_collision, fcl_result.isCollision()) << "case " << i;
+    if (!r.in_collision) continue;
+    ++checked;
+    ExpectMatchesOrRefutes(P, X_WP, S, X_WS, r, fcl_result.getContact(0), "case " + std::to_string(i));
+    EXPECT_TRUE(r.valid);
+    EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r));
+  }
+  EXPECT_GE(checked, 15);
+}
+
+TEST(PolyDepth, IcosphereAgainstBoxMatchesFclConvexEpa) {
+  const TriangleMesh ball = MakeIcosphere(0.3, 2);
+  Model P = CollisionModel::Build(ball);
+  Model S = CollisionModel::Build(MakeBox(Vector3(0.5, 0.5, 0.5)));
+  PolyDepthSolver solver(P, S);
+  auto fcl_P = ToFclConvex(P->mesh());
+  auto fcl_S = ToFclConvex(S->mesh());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int i = 0; i < 15; ++i) {
+    const Isometry3 X_WP = Pose(Vector3(U(rng) * 0.7, U(rng) * 0.7, 0.6 + 0.1 * U(rng)),
+                                Quaternion(U(rng), U(rng), U(rng), U(rng)));
+    const Isometry3 X_WS = Pose(Vector3::Zero());
+    fcl::CollisionObjectd oP(fcl_P, X_WP), oS(fcl_S, X_WS);
+    fcl::CollisionRequestd request(1, true);
+    request.gjk_solver_type = fcl::GST_INDEP;
+    fcl::CollisionResultd fcl_result;
+    fcl::collide(&oP, &oS, request, fcl_result);
+    const PenetrationResult r = solver.Solve(X_WP, X_WS);
+    ASSERT_EQ(r.in_collision, fcl_result.isCollision()) << "case " << i;
+    if (!r.in_collision) continue;
+    // A 320-face ball makes a many-faced Minkowski difference; PolyDepth,
+    // a local method, lands within 0.1% of the exact answer here.
+    ExpectMatchesOrRefutes(P, X_WP, S, X_WS, r, fcl_result.getContact(0),
+                           "case " + std::to_string(i), 1e-3);
+    EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r));
+  }
+}
+
+// A peg wider than the slot it sits in must leave upward, through the opening.
+TEST(PolyDepth, PegInUSlotSlidesOutThroughTheOpening) {
+  Model S = CollisionModel::Build(MakeUSlot(Vector3(1.0, 0.5, 0.3), 0.2, 0.4));
+  Model P = CollisionModel::Build(MakeBox(Vector3(0.1, 0.15, 0.2)));
+  PolyDepthSolver solver(P, S);
+  const Isometry3 X_WP = Pose(Vector3(0, 0, 0.1)), X_WS = Pose(Vector3::Zero());
+  const PenetrationResult r = solver.Solve(X_WP, X_WS);
+  ASSERT_TRUE(r.in_collision);
+  EXPECT_TRUE(r.valid);
+  // Bottom of the peg at z=-0.1 must clear the block top at z=0.3.
+  EXPECT_NEAR(r.depth, 0.4, 1e-6);
+  EXPECT_GT(r.normal_W.z(), 0.999);
+  EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r));
+}
+
+TEST(PolyDepth, ProbeWhollyInsideABoxIsCollidingAndExitsThroughNearestFace) {
+  Model P = CollisionModel::Build(MakeBox(Vector3(0.1, 0.1, 0.1)));
+  Model S = CollisionModel::Build(MakeBox(Vector3(1, 1, 1)));
+  PolyDepthSolver solver(P, S);
+  const Isometry3 X_WP = Pose(Vector3(0.5, 0.1, -0.2)), X_WS = Pose(Vector3::Zero());
+  const PenetrationResult r = solver.Solve(X_WP, X_WS);
+  ASSERT_TRUE(r.in_collision);
+  EXPECT_NEAR(r.depth, 0.6, 1e-6);  // left face at x=0.4 must pass x=1
+  EXPECT_GT(r.normal_W.x(), 0.999);
+  EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r));
+}
+
+TEST(PolyDepth, SceneWhollyInsideTheProbeIsColliding) {
+  Model P = CollisionModel::Build(MakeBox(Vector3(1, 1, 1)));
+  Model S = CollisionModel::Build(MakeBox(Vector3(0.1, 0.1, 0.1)));
+  PolyDepthSolver solver(P, S);
+  const Isometry3 X_WP = Pose(Vector3::Zero()), X_WS = Pose(Vector3(0.5, 0, 0));
+  const PenetrationResult r = solver.Solve(X_WP, X_WS);
+  ASSERT_TRUE(r.in_collision);
+  EXPECT_NEAR(r.depth, 0.6, 1e-6);  // the probe moves -x until x=-1+... clears
+  EXPECT_LT(r.normal_W.x(), -0.999);
+  EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r));
+}
+
+// Non-convex pair against the slow reference PD. The reference also tries the
+// fast answer's direction, so it is never above the fast answer; the fast
+// answer is an upper bound and must be within 2% of the reference per case
+// and 0.5% on average.
+TEST(PolyDepth, TorusKnotPairMatchesReferenceWithinTolerance) {
+  Model P = CollisionModel::Build(MakeTorusKnot(2, 3, 0.12, 0.5, 48, 6));
+  Model S = CollisionModel::Build(MakeTorusKnot(2, 3, 0.2, 1.0, 96, 8));
+  // Cold queries on interlocked knots have many local minima: the accurate
+  // setting refines more starts (the benchmark sweeps this speed/accuracy knob).
+  PolyDepthOptions options;
+  options.num_maximally_clear = 6;
+  options.num_random = 6;
+  options.num_iterated_starts = 12;
+  PolyDepthSolver solver(P, S, options);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  double sum_err = 0.0;
+  int n = 0;
+  for (int i = 0; i < 40 && n < 8; ++i) {
+    const Isometry3 X_WP = Pose(Vector3(U(rng), U(rng), 0.3 * U(rng)) * 0.8,
+                                Quaternion(U(rng), U(rng), U(rng), U(rng)));
+    const Isometry3 X_WS = Pose(Vector3::Zero());
+    const PenetrationResult r = solver.Solve(X_WP, X_WS);
+    if (!r.in_collision) continue;
+    ASSERT_TRUE(r.valid) << "case " << i;
+    EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r)) << "case " << i;
+    ReferencePdOptions ro;
+    ro.num_directions = 400;
+    ro.refine_iterations = 40;
+    ro.extra_directions_W.push_back(r.normal_W);
+    const ReferencePdResult ref =
+        ReferencePenetrationDepth(P->mesh(), X_WP, true, S->mesh(), X_WS, true, ro);
+    ASSERT_TRUE(ref.in_collision);
+    const double err = (r.depth - ref.depth) / ref.depth;
+    // The reference tried our direction; it can still be slightly above us
+    // when our answer sits in a pocket it rejects as a slit.
+    EXPECT_GE(err, -0.01) << "case " << i;
+    EXPECT_LE(err, 0.02) << "case " << i << " depth " << r.depth << " ref " << ref.depth;
+    sum_err += std::abs(err);
+    ++n;
+  }
+  ASSERT_GE(n, 5);
+  EXPECT_LE(sum_err / n, 0.005);
+}
+
+// Scaling meshes and poses together scales the answer and nothing else.
+TEST(PolyDepth, ScaleInvariance) {
+  auto knot = MakeTorusKnot(2, 3, 0.15, 1.0, 64, 6);
+  auto box = MakeBox(Vector3(0.4, 0.3, 0.5));
+  const Isometry3 X_WP = Pose(Vector3(0.55, 0.1, 0.05), Quaternion(0.9, 0.2, -0.3, 0.1));
+  const Isometry3 X_WS = Pose(Vector3(0.02, -0.01, 0.0), Quaternion(0.95, 0.0, 0.1, 0.2));
+  PenetrationResult base;
+  for (double scale : {1.0, 1e-3, 1e3}) {
+    TriangleMesh a = box, b = knot;
+    for (auto& v : a.vertices) v *= scale;
+    for (auto& v : b.vertices) v *= scale;
+    Model P = CollisionModel::Build(a), S = CollisionModel::Build(b);
+    PolyDepthSolver solver(P, S);
+    Isometry3 X_WPs = X_WP, X_WSs = X_WS;
+    X_WPs.translation() *= scale;
+    X_WSs.translation() *= scale;
+    const PenetrationResult r = solver.Solve(X_WPs, X_WSs);
+    ASSERT_TRUE(r.in_collision) << "scale " << scale;
+    ASSERT_TRUE(r.valid) << "scale " << scale;
+    if (scale == 1.0) {
+      base = r;
+      continue;
+    }
+    EXPECT_NEAR(r.depth / scale, base.depth, 1e-6 * base.depth) << "scale " << scale;
+    EXPECT_GT(r.normal_W.dot(base.normal_W), 1.0 - 1e-9) << "scale " << scale;
+    EXPECT_EQ(r.iterations, base.iterations) << "scale " << scale;
+    EXPECT_EQ(r.initializer, base.initializer) << "scale " << scale;
+  }
+}
+
+// A probe pushed down through a thin plate with motion coherence keeps being
+// pushed back up (the side it came from), answers stay valid and change
+// continuously; a cold solver flips to the far side past the middle.
+TEST(PolyDepth, CoherentPushThroughThinPlateNeverFlips) {
+  Model P = CollisionModel::Build(MakeBox(Vector3(0.1, 0.1, 0.1)));
+  Model S = CollisionModel::Build(MakeThinPlate(1.0, 1.0, 0.02));
+  PolyDepthSolver coherent(P, S), cold(P, S);
+  const Isometry3 X_WS = Pose(Vector3::Zero());
+  double previous_depth = 0.0, previous_z = 0.0;
+  bool cold_flipped = false;
+  int colliding = 0;
+  for (double z = 0.15; z > -0.1; z -= 0.002) {
+    const Isometry3 X_WP = Pose(Vector3(0.05, -0.03, z));
+    const PenetrationResult r = coherent.Solve(X_WP, X_WS, true);
+    const PenetrationResult c = cold.Solve(X_WP, X_WS, false);
+    if (c.in_collision && c.normal_W.z() < -0.99) cold_flipped = true;
+    if (!r.in_collision) {
+      ASSERT_EQ(colliding, 0) << "lost contact inside the plate at z=" << z;
+      continue;
+    }
+    ++colliding;
+    ASSERT_TRUE(r.valid) << "z=" << z;
+    EXPECT_GT(r.normal_W.z(), 0.999) << "flipped at z=" << z;
+    // Exact answer on the entry side: bottom face at z-0.1 must clear 0.02.
+    EXPECT_NEAR(r.depth, 0.02 - (z - 0.1), 1e-6) << "z=" << z;
+    if (colliding > 1) {
+      // Continuity: depth changes by the motion, not more.
+      EXPECT_LE(std::abs(r.depth - previous_depth), std::abs(z - previous_z) + 1e-6);
+    }
+    previous_depth = r.depth;
+    previous_z = z;
+    EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r));
+  }
+  EXPECT_GT(colliding, 50);
+  EXPECT_TRUE(cold_flipped);  // shows the test would catch a flip
+}
+
+// Along a continuous path, coherent answers stay valid, exact along their own
+// direction and within 15% of the best escape on their side (PolyDepth is a
+// local method: warm-started, it can stop in a shallow local minimum; the
+// benchmark reports the error distribution).
+TEST(PolyDepth, CoherentPathStaysValidAndNearReference) {
+  Model P = CollisionModel::Build(MakeIcosphere(0.25, 2));
+  Model S = CollisionModel::Build(MakeTorusKnot(2, 3, 0.2, 1.0, 96, 8));
+  PolyDepthSolver solver(P, S);
+  const Isometry3 X_WS = Pose(Vector3::Zero());
+  int checked = 0, colliding = 0;
+  for (int i = 0; i <= 200; ++i) {
+    const double t = i / 200.0;
+    const Isometry3 X_WP = Pose(Vector3(-1.4 + 2.8 * t, 0.15, 0.05),
+                                Quaternion(Eigen::AngleAxisd(2.0 * t, Vector3::UnitZ())));
+    const PenetrationResult r = solver.Solve(X_WP, X_WS, true);
+    if (!r.in_collision) continue;
+    ++colliding;
+    ASSERT_TRUE(r.valid) << "step " << i;
+    ASSERT_TRUE(std::isfinite(r.depth));
+    if (i % 20 == 0) {
+      EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r)) << "step " << i;
+      // Local reference: the exact exit distance minimised over directions
+      // within 30 degrees of our normal. A coherent answer follows the local
+      // contact (it must not flip to the far side once past the middle), so
+      // it is compared with the best escape on its own side.
+      double local_ref = 1e300;
+      const Vector3 n = r.normal_W;
+      const Vector3 a = n.unitOrthogonal(), b = n.cross(a);
+      for (int k = 0; k < 120; ++k) {
+        const double polar = 0.52 * std::sqrt((k + 0.5) / 120.0);
+        const double azimuth = 2.39996 * k;
+        const Vector3 u = std::cos(polar) * n +
+                          std::sin(polar) * (std::cos(azimuth) * a + std::sin(azimuth) * b);
+        local_ref = std::min(local_ref, DirectionalPenetration(P->mesh(), X_WP, true, S->mesh(),
+                                                               X_WS, true, u, 1e-9));
+      }
+      EXPECT_LE(r.depth, local_ref * 1.15) << "step " << i;
+      // Along its own direction the answer is exactly where the probe leaves.
+      const double along = DirectionalPenetration(P->mesh(), X_WP, true, S->mesh(), X_WS, true,
+                                                  n, 1e-9);
+      EXPECT_NEAR(along, r.depth, 1e-6) << "step " << i;
+      ++checked;
+    }
+  }
+  EXPECT_GT(colliding, 40);
+  EXPECT_GE(checked, 2);
+}
+
+// Two solvers sharing models on two threads give the serial answers.
+TEST(PolyDepth, SolversOnDifferentThreadsMatchSerialResults) {
+  Model P = CollisionModel::Build(MakeTorusKnot(2, 3, 0.12, 0.5, 48, 6));
+  Model S = CollisionModel::Build(MakeTorusKnot(2, 3, 0.2, 1.0, 96, 8));
+  std::vector<Isometry3> poses;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int i = 0; i < 30; ++i)
+    poses.push_back(Pose(Vector3(U(rng), U(rng), 0.2 * U(rng)) * 0.8,
+                         Quaternion(U(rng), U(rng), U(rng), U(rng))));
+  auto run = [&](std::vector<double>* depths) {
+    PolyDepthSolver solver(P, S);
+    for (const auto& X : poses) depths->push_back(solver.Solve(X, Pose(Vector3::Zero()), true).depth);
+  };
+  std::vector<double> serial, a, b;
+  run(&serial);
+  std::thread ta(run, &a), tb(run, &b);
+  ta.join();
+  tb.join();
+  EXPECT_EQ(serial, a);
+  EXPECT_EQ(serial, b);
+}
+
+}  // namespace
+}  // namespace pd
