@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <Eigen/Eigenvalues>
+
 namespace pd {
 
 Bvh::Bvh(const TriangleMesh& mesh) {
@@ -26,19 +28,48 @@ int Bvh::Build(const TriangleMesh& mesh, std::vector<Vector3>& centroids, int be
   depth_ = std::max(depth_, level);
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
-  Vector3 lo = Vector3::Constant(1e300), hi = Vector3::Constant(-1e300);
-  Vector3 clo = lo, chi = hi;
+  // Box axes: principal directions of the vertices' scatter (edge-based
+  // for a single triangle, where the scatter is flat and exact).
+  Vector3 mean = Vector3::Zero();
+  Matrix3 scatter = Matrix3::Zero();
+  Vector3 clo = Vector3::Constant(1e300), chi = Vector3::Constant(-1e300);
   for (int i = begin; i < end; ++i) {
     const auto& tri = mesh.triangles[order_[i]];
-    for (int k = 0; k < 3; ++k) {
-      lo = lo.cwiseMin(mesh.vertices[tri[k]]);
-      hi = hi.cwiseMax(mesh.vertices[tri[k]]);
-    }
+    for (int k = 0; k < 3; ++k) mean += mesh.vertices[tri[k]];
     clo = clo.cwiseMin(centroids[order_[i]]);
     chi = chi.cwiseMax(centroids[order_[i]]);
   }
-  nodes_[index].center_M = 0.5 * (lo + hi);
-  nodes_[index].half_M = 0.5 * (hi - lo);
+  mean /= 3.0 * (end - begin);
+  for (int i = begin; i < end; ++i) {
+    const auto& tri = mesh.triangles[order_[i]];
+    for (int k = 0; k < 3; ++k) {
+      const Vector3 d = mesh.vertices[tri[k]] - mean;
+      scatter += d * d.transpose();
+    }
+  }
+  Matrix3 R = Matrix3::Identity();
+  Eigen::SelfAdjointEigenSolver<Matrix3> eig;
+  eig.computeDirect(scatter);
+  if (eig.info() == Eigen::Success && eig.eigenvectors().allFinite()) {
+    R = eig.eigenvectors();
+    // Re-orthonormalise (computeDirect is accurate to ~1e-8 on flat input).
+    R.col(0).normalize();
+    R.col(1) = (R.col(1) - R.col(1).dot(R.col(0)) * R.col(0)).normalized();
+    R.col(2) = R.col(0).cross(R.col(1));
+    if (!R.allFinite()) R = Matrix3::Identity();
+  }
+  Vector3 lo = Vector3::Constant(1e300), hi = Vector3::Constant(-1e300);
+  for (int i = begin; i < end; ++i) {
+    const auto& tri = mesh.triangles[order_[i]];
+    for (int k = 0; k < 3; ++k) {
+      const Vector3 p_B = R.transpose() * mesh.vertices[tri[k]];
+      lo = lo.cwiseMin(p_B);
+      hi = hi.cwiseMax(p_B);
+    }
+  }
+  nodes_[index].R_MB = R;
+  nodes_[index].center_M = R * (0.5 * (lo + hi));
+  nodes_[index].half_B = 0.5 * (hi - lo);
   if (end - begin <= kMaxLeafTriangles) {
     nodes_[index].right_or_first = begin;
     nodes_[index].count = end - begin;

@@ -1,8 +1,10 @@
 #pragma once
-// Bounding-volume hierarchy over a mesh's triangles: axis-aligned boxes in the
-// mesh frame M, binary, nodes stored depth-first (left child = index + 1).
-// Pair queries test a node of one mesh against a node of the other as an
-// oriented box against an axis-aligned box (see box_overlap.h).
+// Bounding-volume hierarchy over a mesh's triangles: oriented boxes (axes
+// from the principal directions of the node's vertices), binary, nodes stored
+// depth-first (left child = index + 1). Oriented boxes hug the long sliver
+// triangles of tessellated tubes and curved surfaces far better than
+// axis-aligned ones, which is what keeps near-contact traversals short.
+// Pair queries are separating-axis tests (see box_overlap.h).
 #include <cstdint>
 #include <vector>
 
@@ -11,8 +13,9 @@
 namespace pd {
 
 struct BvhNode {
-  Vector3 center_M;  // box centre (m)
-  Vector3 half_M;    // box half extents (m)
+  Matrix3 R_MB;      // box axes B (columns) in the mesh frame M
+  Vector3 center_M;  // box centre in M (m)
+  Vector3 half_B;    // half extents along the box axes (m)
   int32_t right_or_first = 0;  // internal: right child; leaf: first slot in order()
   int32_t count = 0;           // 0 for internal nodes, else triangles in the leaf
   bool is_leaf() const { return count > 0; }
@@ -20,7 +23,7 @@ struct BvhNode {
 
 class Bvh {
  public:
-  static constexpr int kMaxLeafTriangles = 1;
+  static constexpr int kMaxLeafTriangles = 2;
   Bvh() = default;
   explicit Bvh(const TriangleMesh& mesh);
 

@@ -5,7 +5,9 @@
 #include <array>
 #include <utility>
 
-#include "pd_core/bvh.h"
+#include "pd_core/box_overlap.h"
+#include "pd_core/candidate_pairs.h"
+#include "pd_core/model_pair.h"
 
 namespace pd {
 
@@ -36,7 +38,7 @@ void TraverseBvhPairs(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& may_touch,
       continue;
     }
     const bool split_P =
-        b.is_leaf() || (!a.is_leaf() && a.half_M.squaredNorm() >= b.half_M.squaredNorm());
+        b.is_leaf() || (!a.is_leaf() && NodeSize2(a) >= NodeSize2(b));
     if (split_P) {
       stack[top++] = {a.right_or_first, is};
       stack[top++] = {ip + 1, is};
@@ -44,6 +46,29 @@ void TraverseBvhPairs(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& may_touch,
       stack[top++] = {ip, b.right_or_first};
       stack[top++] = {ip, is + 1};
     }
+  }
+}
+
+// Like TraverseBvhPairs, but walks the pair's candidate list instead when
+// `use_list` (the caller checked that the list covers its configurations);
+// `may_touch` then filters the listed leaf pairs.
+template <typename NodeTest, typename LeafFn>
+void ForEachLeafPair(const ModelPair& pair, bool use_list, NodeTest&& may_touch,
+                     LeafFn&& on_leaf_pair) {
+  if (!use_list) {
+    TraverseBvhPairs(pair.P.bvh(), pair.S.bvh(), may_touch, on_leaf_pair);
+    return;
+  }
+  const Bvh& bvh_P = pair.P.bvh();
+  const Bvh& bvh_S = pair.S.bvh();
+  for (const auto& [ip, is] : pair.candidates->leaf_pairs()) {
+    const BvhNode& a = bvh_P.nodes()[ip];
+    const BvhNode& b = bvh_S.nodes()[is];
+    if (!may_touch(a, b)) continue;
+    for (int i = 0; i < a.count; ++i)
+      for (int j = 0; j < b.count; ++j)
+        if (!on_leaf_pair(bvh_P.order()[a.right_or_first + i], bvh_S.order()[b.right_or_first + j]))
+          return;
   }
 }
 

@@ -37,7 +37,6 @@ void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double
   const auto& topo_P = pair.P.topology();
   const auto& topo_S = pair.S.topology();
   const bool closed_P = pair.P.closed(), closed_S = pair.S.closed();
-  const Vector3 no_sweep = Vector3::Zero();
 
   auto add = [&](const Vector3& n, double h, const Vector3& p, FeaturePairKind kind) {
     ContactConstraint c;
@@ -53,10 +52,12 @@ void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double
     return (closed || h >= 0) ? n_out : Vector3(-n_out);
   };
 
-  TraverseBvhPairs(
-      pair.P.bvh(), pair.S.bvh(),
+  const bool use_list =
+      pair.candidates && pair.candidates->Covers(pair, q_S, q_S, distance);
+  ForEachLeafPair(
+      pair, use_list,
       [&](const BvhNode& a, const BvhNode& b) {
-        return BoxGapLowerBound(ProbeBox(a, pair.X_SP, q_S), b, pair.X_SP, no_sweep) <=
+        return BoxGapLowerBound(ProbeBox(a, pair.X_SP, q_S), b) <=
                distance;
       },
       [&](int tp, int ts) {

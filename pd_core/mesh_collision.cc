@@ -9,11 +9,12 @@ namespace pd {
 
 bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S) {
   bool hit = false;
-  const Vector3 no_sweep = Vector3::Zero();
-  TraverseBvhPairs(
-      pair.P.bvh(), pair.S.bvh(),
+  const bool use_list =
+      pair.candidates && pair.candidates->Covers(pair, offset_S, offset_S, 0.0);
+  ForEachLeafPair(
+      pair, use_list,
       [&](const BvhNode& a, const BvhNode& b) {
-        return BoxGapLowerBound(ProbeBox(a, pair.X_SP, offset_S), b, pair.X_SP, no_sweep) <= 0;
+        return BoxGapLowerBound(ProbeBox(a, pair.X_SP, offset_S), b) <= 0;
       },
       [&](int tp, int ts) {
         Vector3 p[3], s[3];

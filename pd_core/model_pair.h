@@ -7,10 +7,15 @@
 
 namespace pd {
 
+class CandidatePairs;
+
 struct ModelPair {
   const CollisionModel& P;
   const CollisionModel& S;
   RelativePose X_SP;
+  // Optional leaf-pair list of this pair (see candidate_pairs.h); queries
+  // use it instead of descending the BVHs when it covers their configurations.
+  const CandidatePairs* candidates = nullptr;
 
   ModelPair(const CollisionModel& probe, const CollisionModel& scene, const Isometry3& X_WP,
             const Isometry3& X_WS)

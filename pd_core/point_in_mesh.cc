@@ -6,12 +6,18 @@
 namespace pd {
 namespace {
 
-bool RayHitsBox(const Vector3& o, const Vector3& inv_d, const BvhNode& n) {
-  const Vector3 lo = n.center_M - n.half_M - o;
-  const Vector3 hi = n.center_M + n.half_M - o;
+// Slab test in the box's own frame.
+bool RayHitsBox(const Vector3& o, const Vector3& d, const BvhNode& n) {
+  const Vector3 o_B = n.R_MB.transpose() * (o - n.center_M);
+  const Vector3 d_B = n.R_MB.transpose() * d;
   double t0 = 0.0, t1 = 1e300;
   for (int k = 0; k < 3; ++k) {
-    double a = lo[k] * inv_d[k], b = hi[k] * inv_d[k];
+    if (std::abs(d_B[k]) < 1e-300) {
+      if (std::abs(o_B[k]) > n.half_B[k]) return false;
+      continue;
+    }
+    const double inv = 1.0 / d_B[k];
+    double a = (-n.half_B[k] - o_B[k]) * inv, b = (n.half_B[k] - o_B[k]) * inv;
     if (a > b) std::swap(a, b);
     t0 = std::max(t0, a);
     t1 = std::min(t1, b);
@@ -25,7 +31,6 @@ bool RayHitsBox(const Vector3& o, const Vector3& inv_d, const BvhNode& n) {
 int CountCrossings(const CollisionModel& model, const Vector3& o, const Vector3& d) {
   const Bvh& bvh = model.bvh();
   const auto& mesh = model.mesh();
-  const Vector3 inv_d(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
   std::array<int, 128> stack;
   int top = 0;
   stack[top++] = 0;
@@ -33,7 +38,7 @@ int CountCrossings(const CollisionModel& model, const Vector3& o, const Vector3&
   while (top > 0) {
     const int i = stack[--top];
     const BvhNode& n = bvh.nodes()[i];
-    if (!RayHitsBox(o, inv_d, n)) continue;
+    if (!RayHitsBox(o, d, n)) continue;
     if (!n.is_leaf()) {
       stack[top++] = n.right_or_first;
       stack[top++] = i + 1;
@@ -74,7 +79,8 @@ int CountCrossings(const CollisionModel& model, const Vector3& o, const Vector3&
 bool PointInsideMesh(const CollisionModel& model, const Vector3& p_M) {
   if (model.bvh().empty()) return false;
   const BvhNode& root = model.bvh().nodes()[0];
-  if (((p_M - root.center_M).cwiseAbs() - root.half_M).maxCoeff() > 0) return false;
+  if (((root.R_MB.transpose() * (p_M - root.center_M)).cwiseAbs() - root.half_B).maxCoeff() > 0)
+    return false;
   // Irrational-looking directions make grazing unlikely; retry on grazes.
   static const Vector3 kDirs[7] = {
       Vector3(0.5773, 0.5774, 0.5776), Vector3(-0.3141, 0.8172, 0.4831),

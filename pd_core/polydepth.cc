@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "pd_core/candidate_pairs.h"
 #include "pd_core/contact_constraints.h"
 #include "pd_core/contact_regions.h"
 #include "pd_core/mesh_collision.h"
@@ -70,6 +71,7 @@ struct PolyDepthSolver::Impl {
   std::vector<Start> starts;
   std::vector<SupportPlaneStart> support_starts;
   std::mt19937_64 rng;
+  CandidatePairs candidates;  // leaf pairs near the last contact (warm start)
   // Warm-start state, relative to the scene (so a moving scene is fine).
   bool has_previous = false;       // previous frame collided and was solved
   bool has_previous_free = false;  // previous frame was collision-free
@@ -146,6 +148,7 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
 PolyDepthSolver::~PolyDepthSolver() = default;
 
 void PolyDepthSolver::ResetWarmStart() {
+  impl_->candidates.Invalidate();
   impl_->has_previous = false;
   impl_->has_previous_free = false;
 }
@@ -157,7 +160,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   const auto t_start = std::chrono::steady_clock::now();
   Impl& s = *impl_;
   PenetrationResult result;
-  const ModelPair pair(*probe_, *scene_, X_WP, X_WS);
+  ModelPair pair(*probe_, *scene_, X_WP, X_WS);
+  pair.candidates = &s.candidates;
   const double size = pair.size();
   const double margin = options_.separation_margin * size;
   s.iterations = 0;
@@ -178,6 +182,16 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
 
   // 1. Motion coherence: step off the previous answer along its normal by
   // about the motion since then, verify freedom, and iterate from there.
+  const bool warm = coherent && options_.warm_start;
+  // Keep the leaf-pair list around the configuration we restart from.
+  if (warm && (s.has_previous || s.has_previous_free)) {
+    const Vector3 center = s.has_previous
+                               ? s.previous_q_S
+                               : Vector3(s.previous_X_SP.p_SP - pair.X_SP.p_SP);
+    const double need = 4.0 * options_.contact_tol * size;
+    if (!s.candidates.Covers(pair, center, center, need))
+      s.candidates.Build(pair, center, options_.candidate_radius * size);
+  }
   if (coherent && options_.warm_start && s.has_previous) {
     const Matrix3 dR = s.previous_X_SP.R_SP.transpose() * pair.X_SP.R_SP;
     const double angle = std::acos(std::clamp(0.5 * (dR.trace() - 1.0), -1.0, 1.0));

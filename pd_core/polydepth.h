@@ -43,6 +43,10 @@ struct PolyDepthOptions {
   int num_iterated_starts = 3;     // cold starts refined, closest contact first
   int num_sampling_directions = 64;  // fallback directional search
   bool warm_start = true;          // honour `coherent` in Solve
+  // Warm-started queries keep a list of the leaf pairs within this distance
+  // of the previous contact and reuse it while the probe stays inside that
+  // budget (fraction of size). Larger: rebuilt less often, longer to walk.
+  double candidate_radius = 3e-3;
   uint64_t seed = 12345;
 };
 

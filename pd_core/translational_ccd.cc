@@ -3,6 +3,7 @@
 #include <array>
 
 #include "pd_core/box_overlap.h"
+#include "pd_core/candidate_pairs.h"
 #include "pd_core/triangle_geometry.h"
 
 namespace pd {
@@ -48,6 +49,29 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   const auto& nodes_S = bvh_S.nodes();
   double s_best = 1.0;
   bool hit = false;
+  double lo, hi;
+  const double covered =
+      pair.candidates ? pair.candidates->CoveredFraction(pair, offset_S, sweep_S, 0.0) : -1.0;
+  if (covered > 0.0) {
+    // Every pair that can touch on [0, covered] is listed; a first contact
+    // found there is exact. Past it, fall back to the full descent.
+    s_best = covered;
+    for (const auto& [ip, is] : pair.candidates->leaf_pairs()) {
+      const BvhNode& a = nodes_P[ip];
+      const BvhNode& b = nodes_S[is];
+      if (!SweptBoxContactInterval(ProbeBox(a, pair.X_SP, offset_S), b, sweep_S, s_best, &lo,
+                                   &hi))
+        continue;
+      for (int i = 0; i < a.count; ++i)
+        for (int j = 0; j < b.count; ++j)
+          TriangleFirstContact(pair, bvh_P.order()[a.right_or_first + i],
+                               bvh_S.order()[b.right_or_first + j], offset_S, sweep_S, &s_best,
+                               &hit);
+    }
+    if (hit) return s_best;
+    if (covered >= 1.0) return -1.0;
+    s_best = 1.0;
+  }
 
   // Depth-first, nearer-in-time child pair first, pruning every node pair
   // whose earliest possible contact is later than the best contact so far.
@@ -57,8 +81,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   };
   std::array<Entry, 256> stack;
   int top = 0;
-  double lo, hi;
-  if (!SweptBoxContactInterval(ProbeBox(nodes_P[0], pair.X_SP, offset_S), nodes_S[0], pair.X_SP,
+  if (!SweptBoxContactInterval(ProbeBox(nodes_P[0], pair.X_SP, offset_S), nodes_S[0],
                                sweep_S, s_best, &lo, &hi))
     return -1.0;
   stack[top++] = {0, 0, lo};
@@ -76,14 +99,14 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
       continue;
     }
     const bool split_P =
-        b.is_leaf() || (!a.is_leaf() && a.half_M.squaredNorm() >= b.half_M.squaredNorm());
+        b.is_leaf() || (!a.is_leaf() && NodeSize2(a) >= NodeSize2(b));
     Entry child[2];
     int n = 0;
     for (int c = 0; c < 2; ++c) {
       const int ip = split_P ? (c == 0 ? e.ip + 1 : a.right_or_first) : e.ip;
       const int is = split_P ? e.is : (c == 0 ? e.is + 1 : b.right_or_first);
       if (SweptBoxContactInterval(ProbeBox(nodes_P[ip], pair.X_SP, offset_S), nodes_S[is],
-                                  pair.X_SP, sweep_S, s_best, &lo, &hi))
+                                  sweep_S, s_best, &lo, &hi))
         child[n++] = {ip, is, lo};
     }
     if (n == 2 && child[0].s_lo < child[1].s_lo) std::swap(child[0], child[1]);
