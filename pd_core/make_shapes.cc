@@ -301,16 +301,25 @@ TriangleMesh MakeCup(double outer_radius, double height, double wall_thickness,
       mesh.vertices.emplace_back(r * std::cos(a), r * std::sin(a), z);
     }
   }
-  const int base_centre = 4 * n, floor_centre = 4 * n + 1;
-  mesh.vertices.emplace_back(0.0, 0.0, -h);
-  mesh.vertices.emplace_back(0.0, 0.0, z_floor);
   auto v = [n](int ring, int i) { return ring * n + (i % n); };
   for (int i = 0; i < n; ++i) {
-    mesh.triangles.emplace_back(base_centre, v(0, i + 1), v(0, i));   // base, -z
     AddQuad(&mesh, v(0, i), v(0, i + 1), v(1, i + 1), v(1, i));      // outer wall
     AddQuad(&mesh, v(1, i), v(1, i + 1), v(2, i + 1), v(2, i));      // rim, +z
     AddQuad(&mesh, v(3, i), v(2, i), v(2, i + 1), v(3, i + 1));      // inner wall, inward
-    mesh.triangles.emplace_back(floor_centre, v(3, i), v(3, i + 1));  // inner floor, +z
+  }
+  // Base and floor: zig-zag strips across the polygon rather than fans. A fan
+  // puts n slivers around one centre vertex, and a flat tool resting there
+  // meets all of them at once (many near-contact feature pairs, slow PD).
+  int lo = 0, hi = n - 1;
+  for (bool left = true; hi - lo >= 2; left = !left) {
+    const int a = lo, b = left ? lo + 1 : hi - 1, c = hi;  // CCW seen from +z
+    mesh.triangles.emplace_back(v(3, a), v(3, b), v(3, c));  // inner floor, +z
+    mesh.triangles.emplace_back(v(0, a), v(0, c), v(0, b));  // base, -z
+    if (left) {
+      ++lo;
+    } else {
+      --hi;
+    }
   }
   return mesh;
 }

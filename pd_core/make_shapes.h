@@ -57,7 +57,8 @@ namespace pd {
 // height/2]; outer radius `outer_radius`, inner radius outer_radius -
 // wall_thickness, floor from the bottom up to -height/2 + floor_thickness; the
 // opening faces +z. Needs wall_thickness < outer_radius and floor_thickness <
-// height. 8 * segments triangles (segments >= 3).
+// height. 8 * segments - 4 triangles (segments >= 3); base and floor are
+// zig-zag strips (no high-valence centre vertex).
 TriangleMesh MakeCup(double outer_radius, double height, double wall_thickness,
                      double floor_thickness, int segments);
 
@@ -88,10 +89,11 @@ struct SpoonDimensions {
   double bowl_width = 0.03;     // m, > handle_width
   double bowl_depth = 0.008;    // m
   double thickness = 0.003;     // m
-  int segments_along = 16;      // bowl columns along x (>= 4)
-  int segments_across = 8;      // columns across y (>= 2)
+  int segments_along = 8;       // bowl columns along x (>= 4)
+  int segments_across = 4;      // columns across y (>= 2)
 };
-// About 4 * (segments_along + 3) * segments_across triangles (~600 default).
+// 4 * (segments_along + 2) * segments_across + 4 * (segments_along + 2 +
+// segments_across) triangles (216 with the defaults).
 TriangleMesh MakeSpoon(const SpoonDimensions& dims);
 
 }  // namespace pd

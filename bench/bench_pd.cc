@@ -1,0 +1,184 @@
+// bench_pd: PolyDepth speed against error on real mesh pairs, with the
+// reference PD and FCL baselines on the same cases. Writes
+// pd_speed_error.md, CSVs and PNG plots into --out. See bench/README.md.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "bench/bench_results.h"
+#include "bench/csv_writer.h"
+#include "bench/knob_sweep.h"
+#include "bench/pair_bench.h"
+#include "bench/plots.h"
+#include "bench/report_writer.h"
+#include "bench/summaries.h"
+
+#ifndef PD_SOURCE_DIR
+#define PD_SOURCE_DIR "."
+#endif
+
+namespace fs = std::filesystem;
+using namespace pd_bench;
+
+namespace {
+
+RunSettings MakeSettings(bool quick) {
+  RunSettings s;
+  s.quick = quick;
+  // The reference costs 10-300 ms per direction on these pairs: its subset
+  // and directions are what keep a full run near 30 min and --quick < 2 min.
+  s.random_cases = quick ? 16 : 100;
+  s.path_steps = quick ? 150 : 1000;
+  s.shallow_steps = quick ? 150 : 1000;
+  s.shallow_depth_fraction = 0.01;
+  s.ref_random = quick ? 3 : 24;
+  s.ref_path = quick ? 1 : 8;
+  s.ref_shallow = quick ? 1 : 8;
+  s.ref_random_large = quick ? 3 : 16;
+  s.ref_path_large = quick ? 1 : 2;
+  s.ref_shallow_large = quick ? 1 : 2;
+  s.large_tris = 30000;
+  s.ref_directions = quick ? 96 : 128;
+  s.ref_refine_iterations = quick ? 16 : 24;
+  s.ref_refine_starts = 4;
+  s.fcl_cases = quick ? 20 : 100;
+  s.sweep_cases = quick ? 8 : 60;
+  s.fcl_max_contacts = 100000;
+  s.seed = 20240611;
+  return s;
+}
+
+// --mesh-dir default: build/meshes under the working directory, beside the
+// binary (build/bin/..), or in the source tree, whichever exists.
+std::string FindMeshDir() {
+  std::vector<fs::path> candidates = {fs::current_path() / "build" / "meshes"};
+  std::error_code ec;
+  const fs::path exe = fs::canonical("/proc/self/exe", ec);
+  if (!ec) candidates.push_back(exe.parent_path().parent_path() / "meshes");
+  candidates.push_back(fs::path(PD_SOURCE_DIR) / "build" / "meshes");
+  for (const fs::path& p : candidates)
+    if (fs::is_directory(p)) return p.string();
+  return candidates.front().string();
+}
+
+void PrintHeadlines(const BenchRun& run) {
+  std::printf("\n%-16s %-8s %5s %10s %10s %10s %7s %8s %9s %9s %9s\n", "pair", "scenario",
+              "cases", "median_us", "p99_us", "iters", "valid", "ref_n", "mean|err|",
+              "p95|err|", "signed");
+  for (const PairResult& p : run.pairs)
+    for (const ScenarioResult& s : p.scenarios) {
+      const ScenarioSummary m = Summarize(s);
+      std::printf("%-16s %-8s %5d %10.1f %10.1f %10.2f %6.1f%% %8d %8.2f%% %8.2f%% %8.2f%%\n",
+                  p.pair.name.c_str(), ScenarioName(s.scenario), m.n, m.time_us.median,
+                  m.time_us.p99, m.mean_iterations,
+                  100 * (m.n > 0 ? (m.n - m.n_invalid) / double(m.n) : 0.0), m.n_ref,
+                  100 * m.abs_error.mean, 100 * m.abs_error.p95, 100 * m.signed_mean_error);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"PolyDepth speed-against-error benchmark (reference PD and FCL baselines)"};
+  bool quick = false;
+  std::string out_dir = std::string(PD_SOURCE_DIR) + "/bench/results";
+  std::string mesh_dir;
+  std::vector<std::string> only_pairs;
+  uint64_t seed = 0;
+  int ref_threads = std::max(1u, std::thread::hardware_concurrency());
+  app.add_flag("--quick", quick, "fewer pairs, cases and reference directions (< 2 min)");
+  // TakeLast: run_pd_bench.sh passes --mesh-dir and the user may override it.
+  app.add_option("--out", out_dir, "output directory")
+      ->capture_default_str()
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app.add_option("--mesh-dir", mesh_dir,
+                 "directory of the .off meshes (default: build/meshes, see scripts/fetch_meshes.sh)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app.add_option("--pairs", only_pairs, "run only these pairs (names as in the report)")
+      ->delimiter(',');
+  app.add_option("--seed", seed, "random seed (default: fixed)");
+  int ref_directions = 0;
+  app.add_option("--ref-directions", ref_directions,
+                 "override the reference's Fibonacci directions (quick 96, full 128)")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--ref-threads", ref_threads, "threads for the reference PD")
+      ->capture_default_str()->check(CLI::Range(1, 64));
+  CLI11_PARSE(app, argc, argv);
+
+  const auto t_start = std::chrono::steady_clock::now();
+  BenchRun run;
+  run.machine = ReadMachineInfo(PD_SOURCE_DIR);
+  run.settings = MakeSettings(quick);
+  RunSettings& st = run.settings;
+  if (seed != 0) st.seed = seed;
+  st.ref_threads = ref_threads;
+  if (ref_directions > 0) st.ref_directions = ref_directions;
+  st.mesh_dir = mesh_dir.empty() ? FindMeshDir() : mesh_dir;
+  st.out_dir = out_dir;
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (!fs::is_directory(out_dir)) {
+    std::cerr << "bench_pd: cannot create output directory " << out_dir << "\n";
+    return 1;
+  }
+  std::cerr << "bench_pd: " << (quick ? "quick" : "full") << " run, meshes from " << st.mesh_dir
+            << ", output to " << out_dir << "\n";
+
+  // Models: the pairs', plus ~100k-triangle ones for the precomputation target.
+  ModelCache cache(st.mesh_dir, quick ? 1 : 3);
+  std::vector<BenchPair> pairs;
+  const std::set<std::string> wanted(only_pairs.begin(), only_pairs.end());
+  for (const std::string& name : wanted) {
+    bool known = false;
+    for (const PairSpec& spec : DefaultPairs()) known = known || spec.name == name;
+    if (!known) std::cerr << "bench_pd: --pairs: no pair named " << name << "\n";
+  }
+  for (const PairSpec& spec : DefaultPairs()) {
+    if (!wanted.empty() ? !wanted.count(spec.name) : (quick && !spec.in_quick)) continue;
+    std::string why;
+    auto probe = cache.Get(spec.probe, &why);
+    auto scene = probe ? cache.Get(spec.scene, &why) : nullptr;
+    if (!probe || !scene) {
+      std::cerr << "bench_pd: skipping pair " << spec.name << ": " << why << "\n";
+      run.skipped.push_back(spec.name + ": " + why);
+      continue;
+    }
+    pairs.push_back({spec.name, probe, scene});
+  }
+  if (pairs.empty()) {
+    std::cerr << "bench_pd: no pair to benchmark\n";
+    return 1;
+  }
+  for (const char* name : {"bunny00.off", "procedural:torus_100k", "procedural:icosphere_82k"}) {
+    std::string why;
+    if (!cache.Get(name, &why)) std::cerr << "bench_pd: precomputation model skipped: " << why << "\n";
+  }
+  run.models = cache.All();
+
+  const std::vector<KnobConfig> configs = SweepConfigs();
+  for (const BenchPair& pair : pairs) {
+    PairResult result = RunPair(pair, st);
+    {
+      Progress bar(pair.name + ": knob sweep", SweepWork(result, configs, st.sweep_cases));
+      const std::vector<SweepRow> rows = RunSweep(result, configs, st.sweep_cases, &bar);
+      run.sweep.insert(run.sweep.end(), rows.begin(), rows.end());
+    }
+    run.pairs.push_back(std::move(result));
+  }
+
+  run.total_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  run.load_average_end = ReadLoadAverage();
+  const std::vector<std::string> csvs = WriteCsvFiles(run, out_dir);
+  const std::vector<std::string> pngs = WritePlots(run, out_dir);
+  const std::string report = out_dir + "/pd_speed_error.md";
+  WriteMarkdownReport(run, report, csvs, pngs);
+  PrintHeadlines(run);
+  std::printf("\nbench_pd: report %s (%.0f s)\n", report.c_str(), run.total_seconds);
+  return 0;
+}

@@ -1,0 +1,97 @@
+#include "haptics/haptic_renderer.h"
+
+#include <chrono>
+
+namespace haptics {
+
+HapticRenderer::HapticRenderer(const SceneConfig& config, const SceneModels& models,
+                               const pd::PolyDepthOptions& pd_options)
+    : dt_(1.0 / config.servo.rate_hz),
+      validator_(config.device.workspace_min, config.device.workspace_max),
+      velocity_(config.coupling.velocity_filter_hz),
+      envelope_(config.servo.soft_engage_s, config.servo.watchdog_timeout_s,
+                config.servo.watchdog_ramp_s),
+      penalty_(models.tool, models.objects, config.contact, pd_options),
+      tool_(config.tool.mass, config.tool.I_T, config.tool.gravity_W),
+      coupling_(config.coupling, config.device.max_force, config.device.max_torque),
+      limiter_(config.device, dt_),
+      contact_summary_(&no_contact_) {}
+
+const WrenchOutput& HapticRenderer::Tick(double t, const PoseSample* pose) {
+  const auto t_start = std::chrono::steady_clock::now();
+  const bool was_engaged = envelope_.engaged();
+  int32_t flags = 0;
+
+  bool fresh = false;
+  if (pose != nullptr && validator_.Accept(*pose)) {
+    fresh = true;
+    const PoseSample& good = validator_.last_good();
+    device_.X_W = Isometry3::Identity();
+    device_.X_W.linear() = good.q_WD.toRotationMatrix();
+    device_.X_W.translation() = good.p_WD;
+    if (was_engaged) {
+      velocity_.Update(good);
+    } else {
+      velocity_.Reset(good);
+    }
+    output_.pose_seq = good.seq;
+    output_.pose_utime = good.utime;
+  }
+  if (!fresh) {
+    flags |= kFlagStaleInput;
+    ++stale_ticks_;
+  }
+
+  const double scale = envelope_.Update(t, fresh, &flags);
+  ++output_.tick;
+  if (!envelope_.engaged()) {
+    // Nothing to render before the first valid pose.
+    output_.wrench = limiter_.Apply(Wrench{}, 0.0, &flags);
+    output_.penetration_depth = 0.0;
+    output_.contact_count = 0;
+    output_.flags = flags;
+    output_.solver_time_us = 0.0;
+    return output_;
+  }
+  if (!was_engaged) {
+    tool_.Reset(device_.X_W);
+    penalty_.ResetWarmStarts();
+  }
+  // Stale beyond the watchdog: the handle's motion is unknown.
+  if (envelope_.watchdog_active()) velocity_.Stop();
+  device_.v_W = velocity_.v_W();
+  device_.w_W = velocity_.w_W();
+
+  contact_summary_ = &penalty_.Compute(tool_.state());
+  if (contact_summary_->num_invalid > 0) {
+    flags |= kFlagPdInvalid;
+    ++pd_invalid_ticks_;
+  }
+  LinearizedWrench on_tool = coupling_.Linearize(device_, tool_.state());
+  on_tool += contact_summary_->wrench;
+  tool_.Step(dt_, on_tool);
+
+  output_.wrench = limiter_.Apply(coupling_.OnDevice(device_, tool_.state()), scale, &flags);
+  output_.penetration_depth = contact_summary_->max_depth;
+  output_.contact_count = contact_summary_->num_regions;
+  output_.flags = flags;
+  output_.solver_time_us =
+      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t_start).count();
+  return output_;
+}
+
+RendererCounts HapticRenderer::counts() const {
+  RendererCounts c;
+  c.ticks = output_.tick;
+  c.poses_accepted = validator_.accepted();
+  c.poses_rejected = validator_.rejections();
+  c.stale_ticks = stale_ticks_;
+  c.pd_invalid = penalty_.invalid_count();
+  c.pd_invalid_ticks = pd_invalid_ticks_;
+  c.tool_nonfinite = tool_.nonfinite_steps();
+  c.limiter = limiter_.counts();
+  c.watchdog_trips = envelope_.watchdog_trips();
+  return c;
+}
+
+}  // namespace haptics

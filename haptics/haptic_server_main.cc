@@ -1,0 +1,203 @@
+// haptic_server: 6-DOF haptic rendering over LCM.
+//
+//   haptic_server --config FILE [--lcm-url URL] [--duration S] [--check]
+//
+// Receives probe poses (haptics_msgs::probe_pose_t) on the pose channel,
+// renders contact with the scene through a virtual coupling at the servo
+// rate, publishes haptics_msgs::wrench_t on the wrench channel every tick and
+// haptics_msgs::server_status_t on the status channel at ~10 Hz. Channels,
+// rate and gains come from the config file (see config/box_on_box.yaml).
+// Logs go to stderr; at exit one summary line goes to stdout.
+//
+// Exit codes: 0 clean stop (SIGINT, SIGTERM or --duration), 1 configuration
+// error (message on stderr names the file, key and allowed range; also a bad
+// command line or an LCM URL that cannot be opened), 2 unexpected failure.
+#include <CLI/CLI.hpp>
+#include <lcm/lcm-cpp.hpp>
+#include <signal.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <string>
+
+#include "haptics/build_scene.h"
+#include "haptics/haptic_renderer.h"
+#include "haptics/latest_value.h"
+#include "haptics/lcm_io.h"
+#include "haptics/load_scene_config.h"
+#include "haptics/realtime.h"
+#include "haptics/servo_loop.h"
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitConfig = 1;
+constexpr int kExitFailure = 2;
+
+struct Options {
+  std::string config;
+  std::string lcm_url;
+  double duration_s = 0.0;  // 0: until a signal
+  bool check = false;
+  std::string log_level = "info";
+};
+
+std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCounts& rx) {
+  char line[640];
+  std::snprintf(line, sizeof(line),
+                "haptic_server summary: ticks=%lld elapsed_s=%.3f rate_hz=%.1f deadline_misses=%lld "
+                "jitter_p99_us=%.1f compute_p99_us=%.1f compute_max_us=%.1f poses_received=%lld "
+                "poses_rejected=%lld poses_dropped=%lld messages_malformed=%lld "
+                "force_saturations=%lld rate_limited=%lld watchdog_trips=%lld pd_invalid=%lld "
+                "nonfinite_outputs=%lld realtime=%d",
+                static_cast<long long>(s.ticks), s.elapsed_s, s.achieved_rate_hz,
+                static_cast<long long>(s.deadline_misses), s.jitter_p99_us, s.compute_p99_us,
+                s.compute_max_us, static_cast<long long>(rx.received),
+                static_cast<long long>(s.renderer.poses_rejected.total()),
+                static_cast<long long>(rx.dropped), static_cast<long long>(rx.malformed),
+                static_cast<long long>(s.renderer.limiter.saturated),
+                static_cast<long long>(s.renderer.limiter.rate_limited),
+                static_cast<long long>(s.renderer.watchdog_trips),
+                static_cast<long long>(s.renderer.pd_invalid),
+                static_cast<long long>(s.renderer.limiter.nonfinite), s.realtime ? 1 : 0);
+  return line;
+}
+
+int Serve(const Options& opt, sigset_t* signals) {
+  haptics::SceneConfig config = haptics::LoadSceneConfig(opt.config);
+  if (!opt.lcm_url.empty()) config.lcm.url = opt.lcm_url;
+  const haptics::SceneModels models = haptics::BuildSceneModels(config);
+  spdlog::info("scene '{}': tool {} triangles, {} objects, device {} ({} N, {} N·m), {} Hz",
+               config.name, models.tool->mesh().num_triangles(), models.objects.size(),
+               config.device.name, config.device.max_force, config.device.max_torque,
+               config.servo.rate_hz);
+  if (opt.check) {
+    std::printf("haptic_server: %s OK\n", opt.config.c_str());
+    return kExitOk;
+  }
+
+  // Pose delivery must not starve behind other work either: the threads
+  // created from here on (LCM's udpm read thread, the receive thread) inherit
+  // SCHED_FIFO just below the servo loop, which raises itself further.
+  std::string why;
+  if (config.servo.realtime_priority > 0) {
+    const int io_priority = std::max(1, config.servo.realtime_priority - 10);
+    if (haptics::TrySetFifoScheduling(io_priority, &why)) {
+      spdlog::info("LCM threads: SCHED_FIFO priority {}", io_priority);
+    } else {
+      spdlog::warn("LCM threads: no real-time scheduling ({}); pose delivery may lag under load", why);
+    }
+  }
+
+  // Separate LCM instances: the loop's publishes never share a transmit lock
+  // with the status publishes or the receive thread.
+  lcm::LCM rx(config.lcm.url);
+  lcm::LCM tx(config.lcm.url);
+  if (!rx.good() || !tx.good()) {
+    const std::string where = opt.lcm_url.empty() ? opt.config + ": lcm.url" : "--lcm-url";
+    std::fprintf(stderr, "haptic_server: %s: cannot open LCM URL '%s'\n", where.c_str(),
+                 config.lcm.url.c_str());
+    return kExitConfig;
+  }
+
+  haptics::LatestValue<haptics::PoseSample> poses;
+  haptics::PoseReceiver receiver(&rx, config.lcm.pose_channel, &poses);
+  haptics::HapticRenderer renderer(config, models);
+  haptics::LcmWrenchPublisher sink(&tx, config.lcm.wrench_channel);
+  haptics::ServoLoopOptions loop_options;
+  loop_options.rate_hz = config.servo.rate_hz;
+  loop_options.cpu = config.servo.cpu;
+  loop_options.realtime_priority = config.servo.realtime_priority;
+  loop_options.status_rate_hz = config.servo.status_rate_hz;
+  if (loop_options.cpu >= haptics::NumCpus()) {
+    spdlog::warn("servo.cpu {} does not exist ({} CPUs online); not pinning", loop_options.cpu,
+                 haptics::NumCpus());
+    loop_options.cpu = -1;
+  }
+  haptics::ServoLoop loop(&renderer, &poses, &sink, loop_options);
+
+  // Everything is allocated: keep it in RAM so the loop never page-faults.
+  if (!haptics::TryLockMemory(&why)) spdlog::warn("memory not locked ({}); page faults possible", why);
+
+  spdlog::info("LCM {}: poses on {}, wrenches on {}, status on {}", config.lcm.url,
+               config.lcm.pose_channel, config.lcm.wrench_channel, config.lcm.status_channel);
+  receiver.StartThread();
+  loop.Start();
+
+  const int64_t start_us = haptics::MonotonicMicros();
+  // Poll at twice the status rate so that no status window is missed.
+  const long status_period_ns = static_cast<long>(0.5e9 / config.servo.status_rate_hz);
+  int64_t last_log_us = start_us;
+  for (;;) {
+    timespec wait{status_period_ns / 1'000'000'000, status_period_ns % 1'000'000'000};
+    const int sig = sigtimedwait(signals, nullptr, &wait);
+    if (sig == SIGINT || sig == SIGTERM) {
+      spdlog::info("{}: stopping", sig == SIGINT ? "SIGINT" : "SIGTERM");
+      break;
+    }
+    if (const haptics::LoopStatus* status = loop.status().TakeNewest()) {
+      const haptics_msgs::server_status_t msg = haptics::MakeStatusMessage(*status, receiver.counts());
+      rx.publish(config.lcm.status_channel, &msg);
+      const int64_t now_us = haptics::MonotonicMicros();
+      if (now_us - last_log_us >= 5'000'000) {
+        last_log_us = now_us;
+        spdlog::info("ticks {} rate {:.1f} Hz jitter p99 {:.1f} us compute p99 {:.1f} us misses {} "
+                     "poses {} rejected {}",
+                     msg.tick_count, msg.achieved_rate_hz, msg.period_jitter_p99_us,
+                     msg.compute_p99_us, msg.deadline_misses, msg.poses_received, msg.poses_rejected);
+      }
+    }
+    if (opt.duration_s > 0.0 && haptics::MonotonicMicros() - start_us >= opt.duration_s * 1e6) break;
+  }
+  loop.Stop();
+  receiver.StopThread();
+  std::printf("%s\n", SummaryLine(loop.Summary(), receiver.counts()).c_str());
+  std::fflush(stdout);
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Logs on stderr: stdout carries only the summary line.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("haptic_server"));
+
+  Options opt;
+  CLI::App app{"6-DOF haptic rendering server: probe poses in, wrenches out, over LCM."};
+  app.add_option("--config", opt.config, "scene YAML file (see config/)")->required();
+  app.add_option("--lcm-url", opt.lcm_url, "LCM URL, overrides lcm.url of the config");
+  app.add_option("--duration", opt.duration_s, "stop after this many seconds (default: run until SIGINT/SIGTERM)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--check", opt.check, "load and validate the config, build the scene, then exit");
+  app.add_option("--log-level", opt.log_level, "trace, debug, info, warn, error")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitConfig;
+  }
+  spdlog::set_level(spdlog::level::from_str(opt.log_level));
+
+  // Block the stop signals in every thread; the main thread waits for them.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  try {
+    return Serve(opt, &signals);
+  } catch (const haptics::ConfigError& e) {
+    std::fprintf(stderr, "haptic_server: %s\n", e.what());
+    return kExitConfig;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "haptic_server: error: %s\n", e.what());
+    return kExitFailure;
+  }
+}

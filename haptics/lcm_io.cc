@@ -1,0 +1,148 @@
+#include "haptics/lcm_io.h"
+
+#include <pthread.h>
+#include <time.h>
+
+namespace haptics {
+
+using haptics_msgs::wrench_t;
+static_assert(kFlagForceSaturated == int32_t{wrench_t::FLAG_FORCE_SATURATED} &&
+                  kFlagTorqueSaturated == int32_t{wrench_t::FLAG_TORQUE_SATURATED} &&
+                  kFlagRateLimited == int32_t{wrench_t::FLAG_RATE_LIMITED} &&
+                  kFlagWatchdog == int32_t{wrench_t::FLAG_WATCHDOG} &&
+                  kFlagStaleInput == int32_t{wrench_t::FLAG_STALE_INPUT} &&
+                  kFlagSoftEngage == int32_t{wrench_t::FLAG_SOFT_ENGAGE} &&
+                  kFlagPdInvalid == int32_t{wrench_t::FLAG_PD_INVALID},
+              "wrench_output.h flags must match wrench_t.lcm");
+
+namespace {
+
+// How long the receive thread blocks before checking for a stop.
+constexpr int kHandleTimeoutMs = 50;
+
+int64_t MonotonicNanos() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+}  // namespace
+
+int64_t MonotonicMicros() { return MonotonicNanos() / 1000; }
+
+PoseSample ToPoseSample(const haptics_msgs::probe_pose_t& msg) {
+  PoseSample s;
+  s.seq = msg.seq;
+  s.utime = msg.utime;
+  s.p_WD = Vector3(msg.position[0], msg.position[1], msg.position[2]);
+  s.q_WD = Quaternion(msg.orientation[0], msg.orientation[1], msg.orientation[2], msg.orientation[3]);
+  s.has_velocity = msg.has_velocity;
+  s.v_WD = Vector3(msg.linear_velocity[0], msg.linear_velocity[1], msg.linear_velocity[2]);
+  s.w_WD = Vector3(msg.angular_velocity[0], msg.angular_velocity[1], msg.angular_velocity[2]);
+  return s;
+}
+
+PoseReceiver::PoseReceiver(lcm::LCM* lcm, std::string channel, LatestValue<PoseSample>* out)
+    : lcm_(lcm), channel_(std::move(channel)), out_(out) {
+  subscription_ = lcm_->subscribeFunction(channel_, &PoseReceiver::Handle, this);
+}
+
+PoseReceiver::~PoseReceiver() {
+  StopThread();
+  if (subscription_ != nullptr) lcm_->unsubscribe(subscription_);
+}
+
+void PoseReceiver::StartThread() {
+  stop_ = false;
+  thread_ = std::thread([this] {
+    pthread_setname_np(pthread_self(), "pose_rx");
+    while (!stop_.load(std::memory_order_relaxed)) {
+      if (lcm_->handleTimeout(kHandleTimeoutMs) < 0) {
+        // A socket error: do not spin on it.
+        std::this_thread::sleep_for(std::chrono::milliseconds(kHandleTimeoutMs));
+      }
+    }
+  });
+}
+
+void PoseReceiver::StopThread() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+}
+
+void PoseReceiver::Handle(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
+                          PoseReceiver* self) {
+  // The subscription is a regular expression; take only the exact channel.
+  if (channel != self->channel_) return;
+  self->OnMessage(rbuf->data, static_cast<int>(rbuf->data_size));
+}
+
+void PoseReceiver::OnMessage(const void* data, int size) {
+  haptics_msgs::probe_pose_t msg;
+  // Wrong type (fingerprint), truncated, or with trailing bytes: malformed.
+  if (data == nullptr || size <= 0 || msg.decode(data, 0, size) != size) {
+    malformed_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  PoseSample& slot = out_->WriteSlot();
+  slot = ToPoseSample(msg);
+  slot.receive_time_ns = MonotonicNanos();
+  if (out_->Publish()) dropped_.fetch_add(1, std::memory_order_relaxed);
+  received_.fetch_add(1, std::memory_order_relaxed);
+}
+
+ReceiverCounts PoseReceiver::counts() const {
+  return {received_.load(std::memory_order_relaxed), malformed_.load(std::memory_order_relaxed),
+          dropped_.load(std::memory_order_relaxed)};
+}
+
+LcmWrenchPublisher::LcmWrenchPublisher(lcm::LCM* lcm, std::string channel)
+    : lcm_(lcm), channel_(std::move(channel)) {
+  // Fixed-size message: one buffer serves every tick.
+  buffer_.resize(msg_.getEncodedSize());
+}
+
+void LcmWrenchPublisher::Publish(const WrenchOutput& out) {
+  msg_.utime = MonotonicMicros();
+  msg_.seq = out.tick;
+  msg_.pose_seq = out.pose_seq;
+  msg_.pose_utime = out.pose_utime;
+  for (int i = 0; i < 3; ++i) {
+    msg_.force[i] = out.wrench.f_W[i];
+    msg_.torque[i] = out.wrench.tau_W[i];
+  }
+  msg_.penetration_depth = out.penetration_depth;
+  msg_.contact_count = out.contact_count;
+  msg_.solver_time_us = out.solver_time_us;
+  msg_.flags = out.flags;
+  const int size = static_cast<int>(buffer_.size());
+  if (msg_.encode(buffer_.data(), 0, size) != size ||
+      lcm_->publish(channel_, buffer_.data(), static_cast<unsigned>(size)) != 0) {
+    ++publish_errors_;
+  }
+}
+
+haptics_msgs::server_status_t MakeStatusMessage(const LoopStatus& loop, const ReceiverCounts& rx) {
+  haptics_msgs::server_status_t m{};
+  m.utime = MonotonicMicros();
+  m.tick_count = loop.tick_count;
+  m.target_rate_hz = loop.target_rate_hz;
+  m.achieved_rate_hz = loop.achieved_rate_hz;
+  m.period_jitter_p50_us = loop.jitter_us.p50;
+  m.period_jitter_p99_us = loop.jitter_us.p99;
+  m.period_jitter_max_us = loop.jitter_us.max;
+  m.compute_p50_us = loop.compute_us.p50;
+  m.compute_p99_us = loop.compute_us.p99;
+  m.compute_max_us = loop.compute_us.max;
+  m.deadline_misses = loop.deadline_misses;
+  m.poses_received = rx.received;
+  m.poses_rejected = loop.renderer.poses_rejected.total();
+  m.poses_dropped = rx.dropped;
+  m.messages_malformed = rx.malformed;
+  m.force_saturations = loop.renderer.limiter.saturated;
+  m.watchdog_trips = loop.renderer.watchdog_trips;
+  m.realtime = loop.realtime ? 1 : 0;
+  return m;
+}
+
+}  // namespace haptics

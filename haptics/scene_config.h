@@ -1,0 +1,125 @@
+#pragma once
+// A haptic scene as configured in YAML (config/*.yaml, read by
+// load_scene_config.h): the tool, the scene objects, contact and coupling
+// gains, the device profile, servo-loop timing and the LCM transport. Plain
+// data, validated by the reader. SI units: m, kg, s, N, N·m, rad; poses are
+// position [x, y, z] and quaternion [w, x, y, z].
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "haptics/spatial.h"
+#include "pd_core/make_shapes.h"
+
+namespace haptics {
+
+// Geometry sources. Sizes in metres; see pd_core/make_shapes.h for each shape.
+struct MeshFileShape {
+  std::string path;   // absolute, resolved against the config file's directory
+  double scale = 1.0;  // file units -> m
+};
+struct BoxShape { Vector3 half_extents; };
+struct IcosphereShape { double radius; int subdivisions; };
+struct CylinderShape { double radius, length; int segments; };
+struct TorusShape { double major_radius, minor_radius; int major_segments, minor_segments; };
+struct USlotShape { Vector3 half_extents; double slot_width, slot_depth; };
+struct ThinPlateShape { double half_x, half_y, half_thickness; };
+struct CupShape { double outer_radius, height, wall_thickness, floor_thickness; int segments; };
+struct BlockWithHoleShape { Vector3 half_extents; double hole_half_width; bool round; int segments; };
+struct LRodShape { double arm_x, arm_y, width, thickness; };
+struct SpoonShape { pd::SpoonDimensions dims; };
+
+using ShapeVariant =
+    std::variant<MeshFileShape, BoxShape, IcosphereShape, CylinderShape, TorusShape, USlotShape,
+                 ThinPlateShape, CupShape, BlockWithHoleShape, LRodShape, SpoonShape>;
+
+struct ShapeConfig {
+  std::string key;  // where it was configured, e.g. "objects[1].shape" (for messages)
+  ShapeVariant shape;
+};
+
+struct ObjectConfig {
+  std::string name;
+  ShapeConfig shape;
+  Isometry3 X_WS = Isometry3::Identity();  // pose of the object's mesh frame S in W
+};
+
+// The simulated tool T. Its mass properties are rendering parameters: the
+// mass sits at the tool origin (the coupling point) and the inertia is about
+// that origin, in T.
+struct ToolConfig {
+  ShapeConfig shape;
+  Isometry3 X_TG = Isometry3::Identity();  // geometry (mesh frame G) in T
+  double mass = 0.0;                       // kg
+  Matrix3 I_T = Matrix3::Zero();           // kg·m², about the origin of T, in T
+  Vector3 gravity_W = Vector3::Zero();     // m/s²; off by default
+};
+
+// Where the local PDs' forces act for the contact torque (penalty_wrench.h).
+enum class TorqueModel {
+  kPressureCentre,  // default: each region at its centre of pressure, k shared
+  kRegionPoints,    // each region's point with the full k (the plain formula)
+};
+
+struct ContactConfig {
+  double stiffness = 0.0;     // N/m, penalty per metre of penetration depth
+  double damping = 0.0;       // N·s/m, along the contact normal
+  double torque_scale = 1.0;  // multiplies the torque of the local PDs
+  double cull_margin = 0.005;  // m, added to bounding-sphere distance tests
+  TorqueModel torque_model = TorqueModel::kPressureCentre;
+};
+
+struct CouplingConfig {
+  double k_translational = 0.0;  // N/m
+  double b_translational = 0.0;  // N·s/m
+  double k_rotational = 0.0;     // N·m/rad
+  double b_rotational = 0.0;     // N·m·s/rad
+  // Cut-off of the low-pass on finite-differenced device velocity, used when
+  // poses carry no measured velocity (Hz).
+  double velocity_filter_hz = 100.0;
+};
+
+// A device profile (config/devices/*.yaml).
+struct DeviceConfig {
+  std::string file;            // the profile's path
+  std::string name;
+  double max_force = 0.0;        // N
+  double max_torque = 0.0;       // N·m
+  double max_force_rate = 0.0;   // N/s
+  double max_torque_rate = 0.0;  // N·m/s
+  double max_stiffness = 0.0;    // N/m the device renders stably
+  Vector3 workspace_min = Vector3::Zero();  // m, in W (device base = world)
+  Vector3 workspace_max = Vector3::Zero();
+};
+
+struct ServoConfig {
+  double rate_hz = 1000.0;
+  double watchdog_timeout_s = 0.05;  // configured in ms
+  double watchdog_ramp_s = 0.05;     // force scale 1 -> 0 over this time
+  double soft_engage_s = 1.0;        // force scale 0 -> 1 over this time
+  int cpu = -1;                      // pin the loop thread to this CPU; -1: no pinning
+  int realtime_priority = 80;        // SCHED_FIFO priority; 0: do not ask
+  double status_rate_hz = 10.0;
+};
+
+struct LcmConfig {
+  std::string url = "udpm://239.255.76.67:7667?ttl=0";
+  std::string pose_channel = "PROBE_POSE";
+  std::string wrench_channel = "HAPTIC_WRENCH";
+  std::string status_channel = "HAPTIC_STATUS";
+};
+
+struct SceneConfig {
+  std::string file;  // the scene file as given
+  std::string name;
+  ToolConfig tool;
+  std::vector<ObjectConfig> objects;
+  ContactConfig contact;
+  CouplingConfig coupling;
+  DeviceConfig device;
+  ServoConfig servo;
+  LcmConfig lcm;
+  std::vector<std::string> warnings;  // also logged with spdlog
+};
+
+}  // namespace haptics

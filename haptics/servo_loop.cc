@@ -1,0 +1,149 @@
+#include "haptics/servo_loop.h"
+
+#include <spdlog/spdlog.h>
+#include <time.h>
+
+#include <cerrno>
+#include <cmath>
+#include <string>
+
+#include "haptics/realtime.h"
+
+namespace haptics {
+namespace {
+
+int64_t NowNs() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+void SleepUntil(int64_t t_ns) {
+  timespec ts;
+  ts.tv_sec = t_ns / 1'000'000'000;
+  ts.tv_nsec = t_ns % 1'000'000'000;
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+size_t WindowTicks(const ServoLoopOptions& o) {
+  return static_cast<size_t>(std::max(1.0, std::round(o.rate_hz / o.status_rate_hz)));
+}
+
+}  // namespace
+
+ServoLoop::ServoLoop(HapticRenderer* renderer, LatestValue<PoseSample>* poses, WrenchSink* sink,
+                     const ServoLoopOptions& options)
+    : renderer_(renderer), poses_(poses), sink_(sink), options_(options),
+      window_jitter_us_(WindowTicks(options)), window_compute_us_(WindowTicks(options)) {}
+
+ServoLoop::~ServoLoop() { Stop(); }
+
+void ServoLoop::Start() {
+  stop_ = false;
+  thread_ = std::thread([this] { Run(); });
+}
+
+void ServoLoop::Stop() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+}
+
+void ServoLoop::SetUpThread() {
+  NameThisThread("servo_loop");
+  std::string why;
+  if (options_.realtime_priority > 0) {
+    realtime_ = TrySetFifoScheduling(options_.realtime_priority, &why);
+    if (realtime_) {
+      spdlog::info("servo loop: SCHED_FIFO priority {}", options_.realtime_priority);
+    } else {
+      spdlog::warn("servo loop: no real-time scheduling ({}); running SCHED_OTHER, expect more jitter", why);
+    }
+  }
+  if (options_.cpu >= 0) {
+    pinned_ = TryPinToCpu(options_.cpu, &why);
+    if (pinned_) {
+      spdlog::info("servo loop: pinned to CPU {}", options_.cpu);
+    } else {
+      spdlog::warn("servo loop: not pinned ({}); the scheduler may migrate it", why);
+    }
+  }
+}
+
+void ServoLoop::Run() {
+  SetUpThread();
+  const int64_t period_ns = std::llround(1e9 / options_.rate_hz);
+  const size_t window = WindowTicks(options_);
+  start_ns_ = NowNs();
+  int64_t next = start_ns_ + period_ns;
+  int64_t prev_wake = -1;
+  int64_t window_start = start_ns_;
+  int64_t window_ticks = 0;
+  while (!stop_.load(std::memory_order_relaxed)) {
+    SleepUntil(next);
+    const int64_t wake = NowNs();
+    if (prev_wake >= 0) {
+      const double jitter_us = std::abs(static_cast<double>(wake - prev_wake - period_ns)) * 1e-3;
+      window_jitter_us_.Add(jitter_us);
+      jitter_hist_.Add(jitter_us);
+    }
+    prev_wake = wake;
+
+    const double t = static_cast<double>(next - start_ns_) * 1e-9;
+    const WrenchOutput& out = renderer_->Tick(t, poses_->TakeNewest());
+    sink_->Publish(out);
+
+    const int64_t end = NowNs();
+    const double compute_us = static_cast<double>(end - wake) * 1e-3;
+    window_compute_us_.Add(compute_us);
+    compute_hist_.Add(compute_us);
+    ++ticks_;
+    next += period_ns;  // this tick's deadline: the next tick's start
+    if (end > next) {
+      ++misses_;
+      // More than a whole period late: skip the lost slots, do not burst.
+      if (end > next + period_ns) next += ((end - next) / period_ns) * period_ns;
+    }
+    if (++window_ticks >= static_cast<int64_t>(window)) {
+      PublishStatus(end, window_ticks, end - window_start);
+      window_start = end;
+      window_ticks = 0;
+    }
+  }
+  end_ns_ = NowNs();
+}
+
+void ServoLoop::PublishStatus(int64_t now_ns, int64_t window_ticks, int64_t window_ns) {
+  LoopStatus& s = status_.WriteSlot();
+  s.time_ns = now_ns;
+  s.tick_count = ticks_;
+  s.target_rate_hz = options_.rate_hz;
+  s.achieved_rate_hz = window_ns > 0 ? 1e9 * static_cast<double>(window_ticks) / window_ns : 0.0;
+  s.jitter_us = window_jitter_us_.Summarize();
+  s.compute_us = window_compute_us_.Summarize();
+  s.deadline_misses = misses_;
+  s.realtime = realtime_;
+  s.renderer = renderer_->counts();
+  status_.Publish();
+  window_jitter_us_.Clear();
+  window_compute_us_.Clear();
+}
+
+LoopSummary ServoLoop::Summary() const {
+  LoopSummary s;
+  s.ticks = ticks_;
+  s.elapsed_s = end_ns_ > start_ns_ ? 1e-9 * static_cast<double>(end_ns_ - start_ns_) : 0.0;
+  s.achieved_rate_hz = s.elapsed_s > 0.0 ? ticks_ / s.elapsed_s : 0.0;
+  s.deadline_misses = misses_;
+  s.jitter_p99_us = jitter_hist_.Percentile(0.99);
+  s.jitter_max_us = jitter_hist_.max();
+  s.compute_p50_us = compute_hist_.Percentile(0.50);
+  s.compute_p99_us = compute_hist_.Percentile(0.99);
+  s.compute_max_us = compute_hist_.max();
+  s.realtime = realtime_;
+  s.pinned = pinned_;
+  s.renderer = renderer_->counts();
+  return s;
+}
+
+}  // namespace haptics

@@ -1,0 +1,107 @@
+#pragma once
+// The fixed-rate servo thread. Each tick: take the newest pose (lock-free,
+// latest_value.h), run the renderer, hand the wrench to the sink. Ticks run
+// on absolute deadlines (clock_nanosleep TIMER_ABSTIME, CLOCK_MONOTONIC), so
+// the rate does not drift with compute time. The thread asks for SCHED_FIFO
+// and a CPU of its own and logs a fallback if refused.
+//
+// Measured per tick, into preallocated buffers: period jitter |actual period
+// - nominal|, compute time (wake-up to after the sink returns), deadline
+// misses (a tick finishing after the next tick's start; a tick more than a
+// period late skips the missed slots instead of bursting). At status_rate_hz
+// the loop summarises its window (nth_element on a preallocated copy) into a
+// LoopStatus the main thread takes without locks.
+#include <atomic>
+#include <cstdint>
+#include <thread>
+
+#include "haptics/haptic_renderer.h"
+#include "haptics/latest_value.h"
+#include "haptics/pose_sample.h"
+#include "haptics/timing_stats.h"
+#include "haptics/wrench_output.h"
+
+namespace haptics {
+
+// Where each tick's wrench goes (LCM in the server). Called on the loop
+// thread: must not block or allocate.
+class WrenchSink {
+ public:
+  virtual ~WrenchSink() = default;
+  virtual void Publish(const WrenchOutput& output) = 0;
+};
+
+struct ServoLoopOptions {
+  double rate_hz = 1000.0;
+  int cpu = -1;                 // -1: no pinning
+  int realtime_priority = 80;   // 0: do not ask for SCHED_FIFO
+  double status_rate_hz = 10.0;
+};
+
+// One status window (about 1 / status_rate_hz of ticks). Times in us.
+struct LoopStatus {
+  int64_t time_ns = 0;           // CLOCK_MONOTONIC at the end of the window
+  int64_t tick_count = 0;        // total
+  double target_rate_hz = 0.0;
+  double achieved_rate_hz = 0.0;  // this window
+  TimingSummary jitter_us;        // this window
+  TimingSummary compute_us;       // this window
+  int64_t deadline_misses = 0;    // total
+  bool realtime = false;          // SCHED_FIFO granted
+  RendererCounts renderer;        // totals
+};
+
+// The whole run, after Stop().
+struct LoopSummary {
+  int64_t ticks = 0;
+  double elapsed_s = 0.0;
+  double achieved_rate_hz = 0.0;
+  int64_t deadline_misses = 0;
+  double jitter_p99_us = 0.0, jitter_max_us = 0.0;
+  double compute_p50_us = 0.0, compute_p99_us = 0.0, compute_max_us = 0.0;
+  bool realtime = false;
+  bool pinned = false;
+  RendererCounts renderer;
+};
+
+class ServoLoop {
+ public:
+  // All pointees must outlive the loop.
+  ServoLoop(HapticRenderer* renderer, LatestValue<PoseSample>* poses, WrenchSink* sink,
+            const ServoLoopOptions& options);
+  ~ServoLoop();
+  ServoLoop(const ServoLoop&) = delete;
+  ServoLoop& operator=(const ServoLoop&) = delete;
+
+  void Start();
+  // Stops after the current tick and joins. Idempotent.
+  void Stop();
+
+  // Reader side for the main thread (single reader).
+  LatestValue<LoopStatus>& status() { return status_; }
+  // Valid after Stop().
+  LoopSummary Summary() const;
+
+ private:
+  void Run();
+  void SetUpThread();
+  void PublishStatus(int64_t now_ns, int64_t window_ticks, int64_t window_ns);
+
+  HapticRenderer* renderer_;
+  LatestValue<PoseSample>* poses_;
+  WrenchSink* sink_;
+  ServoLoopOptions options_;
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  LatestValue<LoopStatus> status_;
+
+  // Loop-thread state (read by others only after join).
+  SampleWindow window_jitter_us_, window_compute_us_;
+  DurationHistogram jitter_hist_, compute_hist_;
+  int64_t ticks_ = 0;
+  int64_t misses_ = 0;
+  int64_t start_ns_ = 0, end_ns_ = 0;
+  bool realtime_ = false, pinned_ = false;
+};
+
+}  // namespace haptics

@@ -1,0 +1,204 @@
+// probe_replay: the stand-in for the haptic device. Plays a recorded
+// trajectory (CSV or LCM log) at real time as probe_pose_t, matches the
+// server's wrench_t answers by pose_seq, and reports per-pose results (CSV),
+// a JSON summary and a printed summary.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <lcm/lcm-cpp.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "haptics_msgs/probe_pose_t.hpp"
+#include "probes/channels.h"
+#include "probes/input_error.h"
+#include "probes/load_trajectory.h"
+#include "probes/mono_clock.h"
+#include "probes/network_guard.h"
+#include "probes/pose_message.h"
+#include "probes/realtime.h"
+#include "probes/replay_listener.h"
+#include "probes/replay_result_csv.h"
+#include "probes/replay_summary.h"
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitInput = 1;
+constexpr int kExitLcm = 2;
+constexpr int kExitCheckFailed = 3;
+constexpr int kExitNoServer = 4;
+
+constexpr const char* kFooter = R"(
+The trajectory is a CSV (header time,x,y,z,qw,qx,qy,qz; time in s) or an LCM
+log (lcm-logger / probe_recorder; only --pose-channel events are used). Each
+pose is sent at start + (t - t_first) / rate-scale on CLOCK_MONOTONIC with
+seq = first-seq + index and utime = the send time in us. A wrench answers a
+pose when its pose_seq and pose_utime match; latency = receive - send time.
+
+A pose left unanswered while a later one was answered is "superseded" (the
+server took a newer pose in the same tick, or the datagram was lost on the
+way); one with no later answer is "lost". Lost poses always fail; superseded ones beyond --max-superseded.
+
+Exit codes: 0 every pose sent and answered (up to --max-superseded), all
+wrenches finite and within --max-force; 1 bad input or options; 2 LCM error; 3 a check failed (the
+summary says which); 4 no server message within --start-delay.)";
+
+void SleepSeconds(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"probe_replay: plays a probe trajectory to haptic_server and checks the answers"};
+  app.footer(kFooter);
+  std::string trajectory_path, url, out_csv, summary_json;
+  std::string pose_channel = probes::kDefaultPoseChannel;
+  std::string wrench_channel = probes::kDefaultWrenchChannel;
+  std::string status_channel = probes::kDefaultStatusChannel;
+  double rate_scale = 1.0, start_delay = 10.0, grace = 0.5;
+  std::optional<double> max_force;
+  double max_superseded = 0.0;
+  int64_t first_seq = 0;
+  bool realtime = false;
+
+  app.add_option("--trajectory", trajectory_path, "trajectory CSV or LCM log")
+      ->required()->check(CLI::ExistingFile);
+  app.add_option("--lcm-url", url, "LCM URL (default: LCM's default, udpm)");
+  app.add_option("--pose-channel", pose_channel)->capture_default_str();
+  app.add_option("--wrench-channel", wrench_channel)->capture_default_str();
+  app.add_option("--status-channel", status_channel)->capture_default_str();
+  app.add_option("--rate-scale", rate_scale, "playback speed factor (2 = twice as fast)")
+      ->capture_default_str()->check(CLI::Range(0.01, 100.0));
+  app.add_option("--out", out_csv, "per-pose result CSV");
+  app.add_option("--summary", summary_json, "JSON summary");
+  app.add_option("--start-delay", start_delay,
+                 "wait up to this long (s) for a first status or wrench message; 0: do not wait")
+      ->capture_default_str()->check(CLI::Range(0.0, 600.0));
+  app.add_option("--grace", grace, "wait this long (s) after the last pose for late answers")
+      ->capture_default_str()->check(CLI::Range(0.0, 60.0));
+  app.add_option("--max-force", max_force, "fail if any |force| exceeds this (N)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-superseded", max_superseded,
+                 "tolerate this fraction of poses sent going unanswered because a later pose "
+                 "was answered (a newest-pose server drops one when two arrive in a tick)")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  app.add_option("--first-seq", first_seq, "seq of the first pose")->capture_default_str();
+  app.add_flag("--realtime", realtime, "ask for SCHED_FIFO for the sending thread");
+  CLI11_PARSE(app, argc, argv);
+
+  probes::Trajectory trajectory;
+  try {
+    trajectory = probes::LoadTrajectory(trajectory_path, pose_channel);
+    probes::RequireIsolatedNetworkForUdpm(url, "probe_replay");
+  } catch (const std::exception& e) {
+    std::cerr << "probe_replay: " << e.what() << "\n";
+    return kExitInput;
+  }
+
+  lcm::LCM lcm(url);
+  if (!lcm.good()) {
+    std::cerr << "probe_replay: cannot initialise LCM with URL '" << url << "'\n";
+    return kExitLcm;
+  }
+  probes::SeqMatcher matcher(first_seq, trajectory.size());
+  probes::ReplayListener listener(&matcher);
+  listener.Subscribe(&lcm, wrench_channel, status_channel);
+
+  // LCM dispatches on this thread; the main thread only publishes.
+  std::atomic<bool> stop{false};
+  std::thread receiver([&] {
+    while (!stop) lcm.handleTimeout(20);
+  });
+  auto finish_receiver = [&] {
+    stop = true;
+    receiver.join();
+  };
+
+  if (start_delay > 0.0) {
+    const int64_t give_up = probes::MonotonicNs() + static_cast<int64_t>(start_delay * 1e9);
+    while (!listener.server_seen() && probes::MonotonicNs() < give_up) SleepSeconds(0.005);
+    if (!listener.server_seen()) {
+      finish_receiver();
+      std::cerr << "probe_replay: no message on '" << status_channel << "' or '" << wrench_channel
+                << "' within " << start_delay
+                << " s: is haptic_server running with the same LCM URL and channels?\n";
+      return kExitNoServer;
+    }
+  }
+
+  if (realtime) {
+    std::string why;
+    if (!probes::TryRealtime(80, &why)) std::cerr << "probe_replay: warning: " << why << "\n";
+  }
+  const int64_t start_ns = probes::MonotonicNs() + 5'000'000;
+  const double t_first = trajectory.front().t;
+  int64_t worst_late_ns = 0;
+  int publish_failures = 0;
+  for (size_t i = 0; i < trajectory.size(); ++i) {
+    const int64_t deadline =
+        start_ns + static_cast<int64_t>((trajectory[i].t - t_first) / rate_scale * 1e9);
+    probes::SleepUntilNs(deadline);
+    const int64_t now_ns = probes::MonotonicNs();
+    worst_late_ns = std::max(worst_late_ns, now_ns - deadline);
+    const int64_t seq = first_seq + static_cast<int64_t>(i);
+    const int64_t send_us = now_ns / 1000;
+    {
+      // Marked before publishing so that even an instant answer finds it.
+      std::lock_guard<std::mutex> lock(listener.mutex());
+      matcher.MarkSent(seq, send_us);
+    }
+    haptics_msgs::probe_pose_t msg = probes::MakePoseMessage(trajectory[i], seq, send_us);
+    if (lcm.publish(pose_channel, &msg) != 0) ++publish_failures;
+  }
+
+  // Grace period: stop early once every pose has its answer.
+  const int64_t grace_end = probes::MonotonicNs() + static_cast<int64_t>(grace * 1e9);
+  while (listener.first_answers() < static_cast<int64_t>(trajectory.size()) &&
+         probes::MonotonicNs() < grace_end) {
+    SleepSeconds(0.001);
+  }
+  finish_receiver();
+
+  probes::SummaryLimits limits;
+  limits.force_limit_N = max_force;
+  limits.max_superseded_fraction = max_superseded;
+  probes::ReplaySummary summary = probes::Summarise(matcher.records(),
+                                                    static_cast<int64_t>(trajectory.size()), limits);
+  summary.trajectory = trajectory_path;
+  summary.repeat_answers = matcher.repeat_answers();
+  summary.no_pose_answers = matcher.no_pose_answers();
+  summary.foreign_answers = matcher.foreign_answers();
+  summary.max_send_lateness_us = 1e-3 * static_cast<double>(worst_late_ns);
+  summary.last_status = listener.last_status();
+
+  try {
+    if (!out_csv.empty()) {
+      std::ofstream out(out_csv);
+      if (!out) throw probes::InputError(out_csv + ": cannot open for writing");
+      probes::WriteResultCsv(out, trajectory, matcher.records());
+      if (!out.flush()) throw probes::InputError(out_csv + ": write failed");
+    }
+    if (!summary_json.empty()) {
+      std::ofstream out(summary_json);
+      if (!out) throw probes::InputError(summary_json + ": cannot open for writing");
+      out << probes::ToJson(summary).dump(2) << "\n";
+      if (!out.flush()) throw probes::InputError(summary_json + ": write failed");
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "probe_replay: " << e.what() << "\n";
+    return kExitInput;
+  }
+  std::cout << probes::FormatSummary(summary) << std::flush;
+  if (publish_failures > 0) {
+    std::cerr << "probe_replay: " << publish_failures << " publish calls failed\n";
+    return kExitLcm;
+  }
+  return summary.ok() ? kExitOk : kExitCheckFailed;
+}

@@ -1,0 +1,13 @@
+#include "probes/load_trajectory.h"
+
+#include "probes/trajectory_csv.h"
+#include "probes/trajectory_lcm_log.h"
+
+namespace probes {
+
+Trajectory LoadTrajectory(const std::string& path, const std::string& pose_channel) {
+  if (IsLcmLogFile(path)) return ReadTrajectoryLcmLog(path, pose_channel);
+  return ReadTrajectoryCsv(path);
+}
+
+}  // namespace probes

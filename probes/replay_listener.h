@@ -1,0 +1,85 @@
+#pragma once
+// Receives the server's wrench and status messages for probe_replay on the
+// LCM handler thread: matches each wrench to the pose it answers, keeps the
+// latest status and notes that the server is up. Subscribes with
+// subscribeFunction and decodes itself: LCM 1.3.1's member-function
+// subscriptions crash in sanitizer builds (PD_SANITIZE).
+#include <atomic>
+#include <lcm/lcm-cpp.hpp>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "haptics_msgs/server_status_t.hpp"
+#include "haptics_msgs/wrench_t.hpp"
+#include "probes/mono_clock.h"
+#include "probes/seq_matcher.h"
+
+namespace probes {
+
+class ReplayListener {
+ public:
+  explicit ReplayListener(SeqMatcher* matcher) : matcher_(matcher) {}
+
+  void Subscribe(lcm::LCM* lcm, const std::string& wrench_channel,
+                 const std::string& status_channel) {
+    lcm->subscribeFunction(wrench_channel, &ReplayListener::OnWrench, this);
+    lcm->subscribeFunction(status_channel, &ReplayListener::OnStatus, this);
+  }
+
+  // What the LCM callbacks do, callable without LCM (unit tests).
+  void HandleWrench(const haptics_msgs::wrench_t& msg, int64_t receive_us) {
+    WrenchAnswer a;
+    a.pose_seq = msg.pose_seq;
+    a.pose_utime = msg.pose_utime;
+    for (int i = 0; i < 3; ++i) {
+      a.force[i] = msg.force[i];
+      a.torque[i] = msg.torque[i];
+    }
+    a.penetration_depth = msg.penetration_depth;
+    a.contact_count = msg.contact_count;
+    a.flags = msg.flags;
+    server_seen_ = true;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (matcher_->Match(a, receive_us) == SeqMatcher::Outcome::kFirstAnswer) ++first_answers_;
+  }
+
+  void HandleStatus(const haptics_msgs::server_status_t& msg) {
+    server_seen_ = true;
+    std::lock_guard<std::mutex> lock(mutex_);
+    last_status_ = msg;
+  }
+
+  // Guards the matcher: the sender thread marks poses sent under it.
+  std::mutex& mutex() { return mutex_; }
+  bool server_seen() const { return server_seen_.load(); }
+  int64_t first_answers() const { return first_answers_.load(); }
+  std::optional<haptics_msgs::server_status_t> last_status() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return last_status_;
+  }
+
+ private:
+  // Undecodable messages (wrong type, truncated) are ignored.
+  static void OnWrench(const lcm::ReceiveBuffer* rbuf, const std::string&, ReplayListener* self) {
+    // Timestamp first so that decoding and lock contention are not counted as latency.
+    const int64_t receive_us = MonotonicUs();
+    haptics_msgs::wrench_t msg{};
+    if (msg.decode(rbuf->data, 0, rbuf->data_size) != static_cast<int>(rbuf->data_size)) return;
+    self->HandleWrench(msg, receive_us);
+  }
+
+  static void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&, ReplayListener* self) {
+    haptics_msgs::server_status_t msg{};
+    if (msg.decode(rbuf->data, 0, rbuf->data_size) != static_cast<int>(rbuf->data_size)) return;
+    self->HandleStatus(msg);
+  }
+
+  SeqMatcher* matcher_;
+  std::mutex mutex_;
+  std::atomic<bool> server_seen_{false};
+  std::atomic<int64_t> first_answers_{0};
+  std::optional<haptics_msgs::server_status_t> last_status_;
+};
+
+}  // namespace probes

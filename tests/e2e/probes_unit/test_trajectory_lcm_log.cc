@@ -1,0 +1,117 @@
+// LCM log trajectories: pose channel only, LCM_SELF_TEST skipped, sample time
+// from the pose utime; format detection by the log magic number.
+#include <gtest/gtest.h>
+
+#include <lcm/lcm-cpp.hpp>
+#include <string>
+#include <vector>
+
+#include "haptics_msgs/probe_pose_t.hpp"
+#include "haptics_msgs/wrench_t.hpp"
+#include "probes/input_error.h"
+#include "probes/load_trajectory.h"
+#include "probes/trajectory_lcm_log.h"
+#include "temp_file.h"
+
+namespace probes {
+namespace {
+
+void WriteEvent(lcm::LogFile* log, const std::string& channel, std::vector<uint8_t> data) {
+  static int64_t eventnum = 0;
+  lcm::LogEvent e{};
+  e.eventnum = eventnum++;
+  e.timestamp = 1'700'000'000'000'000 + eventnum;
+  e.channel = channel;
+  e.datalen = static_cast<int32_t>(data.size());
+  e.data = data.data();
+  ASSERT_EQ(log->writeEvent(&e), 0);
+}
+
+template <typename Msg>
+std::vector<uint8_t> Encode(const Msg& msg) {
+  std::vector<uint8_t> buf(msg.getEncodedSize());
+  msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
+  return buf;
+}
+
+haptics_msgs::probe_pose_t Pose(int64_t seq, int64_t utime, double z) {
+  haptics_msgs::probe_pose_t p{};
+  p.seq = seq;
+  p.utime = utime;
+  p.position[2] = z;
+  p.orientation[0] = 1.0;
+  p.has_velocity = true;
+  p.linear_velocity[2] = -0.01;
+  return p;
+}
+
+TEST(TrajectoryLcmLog, ReadsPoseChannelOnly) {
+  const std::string path = ::testing::TempDir() + "probes_tests_poses.lcmlog";
+  {
+    lcm::LogFile log(path, "w");
+    ASSERT_TRUE(log.good());
+    WriteEvent(&log, "LCM_SELF_TEST", {1, 2, 3});
+    WriteEvent(&log, "PROBE_POSE", Encode(Pose(7, 5'000'000, 0.10)));
+    WriteEvent(&log, "HAPTIC_WRENCH", Encode(haptics_msgs::wrench_t{}));
+    WriteEvent(&log, "PROBE_POSE", Encode(Pose(8, 5'001'000, 0.09)));
+  }
+  EXPECT_TRUE(IsLcmLogFile(path));
+  const Trajectory t = LoadTrajectory(path, "PROBE_POSE");
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_DOUBLE_EQ(t[0].t, 0.0);
+  EXPECT_DOUBLE_EQ(t[1].t, 0.001);
+  EXPECT_DOUBLE_EQ(t[1].p_WP[2], 0.09);
+  EXPECT_TRUE(t[1].has_velocity);
+  EXPECT_DOUBLE_EQ(t[1].v_WP[2], -0.01);
+}
+
+TEST(TrajectoryLcmLog, UndecodablePoseNamesEvent) {
+  const std::string path = ::testing::TempDir() + "probes_tests_bad.lcmlog";
+  {
+    lcm::LogFile log(path, "w");
+    WriteEvent(&log, "PROBE_POSE", Encode(Pose(1, 10, 0.1)));
+    WriteEvent(&log, "PROBE_POSE", Encode(haptics_msgs::wrench_t{}));  // wrong type
+  }
+  try {
+    ReadTrajectoryLcmLog(path, "PROBE_POSE");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": event 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot decode"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TrajectoryLcmLog, MissingChannelListsWhatIsThere) {
+  const std::string path = ::testing::TempDir() + "probes_tests_nopose.lcmlog";
+  {
+    lcm::LogFile log(path, "w");
+    WriteEvent(&log, "LCM_SELF_TEST", {0});
+    WriteEvent(&log, "OTHER", {0});
+  }
+  try {
+    ReadTrajectoryLcmLog(path, "PROBE_POSE");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("channels in the log: OTHER (1)"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(TrajectoryLcmLog, NonIncreasingUtimeIsAnError) {
+  const std::string path = ::testing::TempDir() + "probes_tests_time.lcmlog";
+  {
+    lcm::LogFile log(path, "w");
+    WriteEvent(&log, "PROBE_POSE", Encode(Pose(1, 10, 0.1)));
+    WriteEvent(&log, "PROBE_POSE", Encode(Pose(2, 10, 0.1)));
+  }
+  EXPECT_THROW(ReadTrajectoryLcmLog(path, "PROBE_POSE"), InputError);
+}
+
+TEST(TrajectoryLcmLog, CsvIsNotMistakenForALog) {
+  const std::string path = WriteTempFile("plain.csv", "time,x,y,z,qw,qx,qy,qz\n0,1,2,3,1,0,0,0\n");
+  EXPECT_FALSE(IsLcmLogFile(path));
+  EXPECT_DOUBLE_EQ(LoadTrajectory(path, "PROBE_POSE").at(0).p_WP[2], 3.0);
+}
+
+}  // namespace
+}  // namespace probes

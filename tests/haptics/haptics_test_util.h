@@ -1,0 +1,75 @@
+#pragma once
+// Helpers shared by the haptics tests: a programmatic box-on-box scene (no
+// YAML), pose samples, and file helpers.
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "haptics/build_scene.h"
+#include "haptics/pose_sample.h"
+#include "haptics/scene_config.h"
+
+namespace haptics::test {
+
+inline std::string ConfigDir() { return HAPTICS_CONFIG_DIR; }
+
+// A 2 cm box tool over a 10 x 10 x 2 cm table whose top face is z = 0.
+inline SceneConfig BoxOnBoxConfig() {
+  SceneConfig c;
+  c.file = "box_on_box_test";
+  c.name = "box_on_box_test";
+  c.tool.shape = {"tool.shape", BoxShape{Vector3(0.01, 0.01, 0.01)}};
+  c.tool.mass = 0.02;
+  c.tool.I_T = 1e-5 * Matrix3::Identity();
+  ObjectConfig table;
+  table.name = "table";
+  table.shape = {"objects[0].shape", BoxShape{Vector3(0.05, 0.05, 0.01)}};
+  table.X_WS.translation() = Vector3(0, 0, -0.01);
+  c.objects.push_back(table);
+  c.contact = {3000.0, 5.0, 1.0, 0.005};
+  c.coupling.k_translational = 1000.0;
+  c.coupling.b_translational = 5.0;
+  c.coupling.k_rotational = 0.5;
+  c.coupling.b_rotational = 0.003;
+  c.device.file = "test_device";
+  c.device.name = "test_device";
+  c.device.max_force = 12.0;
+  c.device.max_torque = 0.2;
+  c.device.max_force_rate = 2000.0;
+  c.device.max_torque_rate = 33.0;
+  c.device.max_stiffness = 14500.0;
+  c.device.workspace_min = Vector3(-0.1, -0.1, -0.07);
+  c.device.workspace_max = Vector3(0.1, 0.1, 0.07);
+  c.servo.rate_hz = 1000.0;
+  c.servo.watchdog_timeout_s = 0.05;
+  c.servo.watchdog_ramp_s = 0.05;
+  c.servo.soft_engage_s = 0.0;
+  return c;
+}
+
+inline PoseSample MakePose(int64_t seq, const Vector3& p_WD,
+                           const Quaternion& q_WD = Quaternion::Identity()) {
+  PoseSample s;
+  s.seq = seq;
+  s.utime = 1000 * seq;  // 1 kHz sender clock
+  s.p_WD = p_WD;
+  s.q_WD = q_WD;
+  return s;
+}
+
+// A fresh empty directory under the system temp dir.
+inline std::filesystem::path MakeTempDir(const std::string& tag) {
+  static std::mt19937_64 rng(std::random_device{}());
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("haptics_test_" + tag + "_" + std::to_string(rng()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+inline void WriteFile(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+}  // namespace haptics::test

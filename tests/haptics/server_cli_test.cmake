@@ -1,0 +1,95 @@
+# Command-line contract of haptic_server, without a network: config errors
+# (exit 1, message naming file and key), --check on the shipped configs, and a
+# short run on memq:// that must exit 0 printing one summary line on stdout.
+# Run as: cmake -DSERVER=<haptic_server> -DCONFIG_DIR=<config> -DWORK_DIR=<dir> -DCASE=<case> -P this
+cmake_minimum_required(VERSION 3.20)
+
+function(run_server)
+  execute_process(COMMAND ${SERVER} ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err TIMEOUT 60)
+  set(code "${code}" PARENT_SCOPE)
+  set(out "${out}" PARENT_SCOPE)
+  set(err "${err}" PARENT_SCOPE)
+endfunction()
+
+function(expect_contains haystack needle what)
+  string(FIND "${haystack}" "${needle}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "${what} lacks '${needle}':\n${haystack}")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+
+if(CASE STREQUAL "check_shipped")
+  file(GLOB scenes ${CONFIG_DIR}/*.yaml)
+  foreach(scene ${scenes})
+    run_server(--config ${scene} --check)
+    if(NOT code EQUAL 0)
+      message(FATAL_ERROR "--check ${scene}: exit ${code}\n${err}")
+    endif()
+    expect_contains("${out}" "OK" "stdout")
+  endforeach()
+
+elseif(CASE STREQUAL "missing_config")
+  run_server(--config ${WORK_DIR}/nope.yaml)
+  if(NOT code EQUAL 1)
+    message(FATAL_ERROR "missing config: expected exit 1, got ${code}\n${err}")
+  endif()
+  expect_contains("${err}" "${WORK_DIR}/nope.yaml" "stderr")
+
+elseif(CASE STREQUAL "bad_value")
+  file(READ ${CONFIG_DIR}/box_on_box.yaml scene)
+  string(REPLACE "stiffness: 3000.0" "stiffness: -3000.0" scene "${scene}")
+  file(COPY ${CONFIG_DIR}/devices DESTINATION ${WORK_DIR})
+  file(WRITE ${WORK_DIR}/bad.yaml "${scene}")
+  run_server(--config ${WORK_DIR}/bad.yaml)
+  if(NOT code EQUAL 1)
+    message(FATAL_ERROR "bad value: expected exit 1, got ${code}\n${err}")
+  endif()
+  expect_contains("${err}" "${WORK_DIR}/bad.yaml: contact.stiffness:" "stderr")
+  expect_contains("${err}" "(0, 100000] N/m" "stderr")
+
+elseif(CASE STREQUAL "bad_command_line")
+  run_server(--duration 1)
+  if(NOT code EQUAL 1)
+    message(FATAL_ERROR "no --config: expected exit 1, got ${code}")
+  endif()
+
+elseif(CASE STREQUAL "memq_run")
+  run_server(--config ${CONFIG_DIR}/box_on_box.yaml --lcm-url memq:// --duration 0.5)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "memq run: exit ${code}\n${err}")
+  endif()
+  string(STRIP "${out}" out)
+  string(FIND "${out}" "\n" newline)
+  if(NOT newline EQUAL -1)
+    message(FATAL_ERROR "expected one line on stdout, got:\n${out}")
+  endif()
+  if(NOT out MATCHES "^haptic_server summary: ticks=([0-9]+) .* poses_received=0 poses_rejected=0 ")
+    message(FATAL_ERROR "unexpected summary line:\n${out}")
+  endif()
+  if(CMAKE_MATCH_1 LESS 1)
+    message(FATAL_ERROR "no ticks ran:\n${out}")
+  endif()
+
+elseif(CASE STREQUAL "sigint" OR CASE STREQUAL "sigterm")
+  # A clean stop on the signal: exit 0 and the summary line.
+  if(CASE STREQUAL "sigint")
+    set(signal INT)
+  else()
+    set(signal TERM)
+  endif()
+  execute_process(COMMAND timeout --preserve-status -s ${signal} 1.5 ${SERVER}
+                          --config ${CONFIG_DIR}/box_on_box.yaml --lcm-url memq://
+                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "SIG${signal}: expected exit 0, got ${code}\n${err}")
+  endif()
+  expect_contains("${out}" "haptic_server summary: ticks=" "stdout")
+  expect_contains("${err}" "SIG${signal}: stopping" "stderr")
+
+else()
+  message(FATAL_ERROR "unknown CASE ${CASE}")
+endif()
