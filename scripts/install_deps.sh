@@ -9,7 +9,7 @@ PKGS=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   gnuplot-nox
   libcgal-demo assimp-testmodels
-  iproute2 util-linux
+  iproute2 util-linux jq
 )
 missing=()
 for p in "${PKGS[@]}"; do
