@@ -46,10 +46,8 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
 // configuration and (pair pose, translation q_S).
 void CandidatePairs::Motion(const ModelPair& pair, double* rotation_bound,
                             Vector3* center_shift_S) const {
-  const Matrix3 dR = X_SP_.R_SP.transpose() * pair.X_SP.R_SP;
-  const double angle = std::acos(std::clamp(0.5 * (dR.trace() - 1.0), -1.0, 1.0));
   const Vector3& c_P = pair.P.center();
-  *rotation_bound = angle * pair.P.radius();
+  *rotation_bound = RotationAngleBetween(X_SP_.R_SP, pair.X_SP.R_SP) * pair.P.radius();
   *center_shift_S = (pair.X_SP * c_P) - (X_SP_ * c_P + q_center_S_);
 }
 

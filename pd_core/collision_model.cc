@@ -2,18 +2,14 @@
 
 #include <cmath>
 
+#include "pd_core/fibonacci_sphere.h"
+
 namespace pd {
 namespace {
 
-// Unit directions spread evenly over the sphere (Fibonacci lattice).
 std::vector<Vector3> FibonacciDirections(int n) {
   std::vector<Vector3> dirs(n);
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / n;
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    dirs[i] = Vector3(r * std::cos(golden * i), r * std::sin(golden * i), z);
-  }
+  for (int i = 0; i < n; ++i) dirs[i] = FibonacciDirection(i, n);
   return dirs;
 }
 

@@ -8,6 +8,7 @@
 #include "pd_core/candidate_pairs.h"
 #include "pd_core/contact_constraints.h"
 #include "pd_core/contact_regions.h"
+#include "pd_core/fibonacci_sphere.h"
 #include "pd_core/mesh_collision.h"
 #include "pd_core/min_norm_point.h"
 #include "pd_core/model_pair.h"
@@ -53,7 +54,6 @@ Vector3 OutProject(const ModelPair& pair, const Vector3& q_from, const Vector3& 
     *touched = false;
     return q_to;
   }
-
   const double s = FirstContactAlongTranslation(pair, q_from, d);
   if (s < 0) {
     *touched = false;
@@ -192,9 +192,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     if (!s.candidates.Covers(pair, center, center, need))
       s.candidates.Build(pair, center, options_.candidate_radius * size);
   }
-  if (coherent && options_.warm_start && s.has_previous) {
-    const Matrix3 dR = s.previous_X_SP.R_SP.transpose() * pair.X_SP.R_SP;
-    const double angle = std::acos(std::clamp(0.5 * (dR.trace() - 1.0), -1.0, 1.0));
+  if (warm && s.has_previous) {
+    const double angle = RotationAngleBetween(s.previous_X_SP.R_SP, pair.X_SP.R_SP);
     const double motion =
         (pair.X_SP.p_SP - s.previous_X_SP.p_SP).norm() + angle * probe_->radius();
     double offset = motion + options_.contact_tol * size;
@@ -210,8 +209,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
 
   // 1b. Coming from a free frame: put the probe back where it was then (a
   // free place a short way back along the motion) and out-project from there.
-  if (coherent && options_.warm_start && !s.has_previous && s.has_previous_free &&
-      s.best_origin == Initializer::kNone) {
+  if (warm && !s.has_previous && s.has_previous_free && s.best_origin == Initializer::kNone) {
     const Vector3 back = s.previous_X_SP.p_SP - pair.X_SP.p_SP;
     const double len = back.norm();
     if (len > 0.0) {
@@ -268,11 +266,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     Vector3 best_contact = Vector3::Zero();
     double best_norm = 1e300;
     const int n = options_.num_sampling_directions;
-    const double golden = M_PI * (3.0 - std::sqrt(5.0));
     for (int i = 0; i < n; ++i) {
-      const double z = 1.0 - (2.0 * i + 1.0) / n;
-      const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-      const Vector3 u(r * std::cos(golden * i), r * std::sin(golden * i), z);
+      const Vector3 u = FibonacciDirection(i, n);
       bool touched = false;
       const Vector3 q_c =
           OutProject(pair, SupportPlaneTranslation(pair, u), Vector3::Zero(), margin, &touched);

@@ -2,6 +2,7 @@
 // Pose of the probe P in the scene object's frame S, with the absolute
 // rotation matrix that box tests need. Pair queries run in S so that the
 // scene's BVH is used as stored and only the probe's features are moved.
+#include <algorithm>
 #include <cmath>
 
 #include "pd_core/pose.h"
@@ -23,5 +24,11 @@ struct RelativePose {
   }
   Vector3 operator*(const Vector3& p_PQ) const { return R_SP * p_PQ + p_SP; }
 };
+
+// Angle (rad) of the rotation taking R_a to R_b.
+inline double RotationAngleBetween(const Matrix3& R_a, const Matrix3& R_b) {
+  const Matrix3 dR = R_a.transpose() * R_b;
+  return std::acos(std::clamp(0.5 * (dR.trace() - 1.0), -1.0, 1.0));
+}
 
 }  // namespace pd

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "pd_core/fibonacci_sphere.h"
+
 namespace pd {
 namespace {
 
@@ -12,12 +14,7 @@ constexpr int kNumDirections = 48;
 const std::array<Vector3, kNumDirections>& Directions() {
   static const std::array<Vector3, kNumDirections> dirs = [] {
     std::array<Vector3, kNumDirections> d;
-    const double golden = M_PI * (3.0 - std::sqrt(5.0));
-    for (int i = 0; i < kNumDirections; ++i) {
-      const double z = 1.0 - (2.0 * i + 1.0) / kNumDirections;
-      const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-      d[i] = Vector3(r * std::cos(golden * i), r * std::sin(golden * i), z);
-    }
+    for (int i = 0; i < kNumDirections; ++i) d[i] = FibonacciDirection(i, kNumDirections);
     return d;
   }();
   return dirs;

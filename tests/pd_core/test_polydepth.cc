@@ -38,6 +38,17 @@ std::shared_ptr<fcl::Convexd> ToFclConvex(const TriangleMesh& mesh) {
   return std::make_shared<fcl::Convexd>(verts, mesh.num_triangles(), faces);
 }
 
+// FCL's own GJK/EPA (GST_INDEP) collision with one contact.
+fcl::CollisionResultd FclEpaCollide(const std::shared_ptr<fcl::Convexd>& a, const Isometry3& X_WA,
+                                    const std::shared_ptr<fcl::Convexd>& b, const Isometry3& X_WB) {
+  fcl::CollisionObjectd oA(a, X_WA), oB(b, X_WB);
+  fcl::CollisionRequestd request(1, true);
+  request.gjk_solver_type = fcl::GST_INDEP;
+  fcl::CollisionResultd result;
+  fcl::collide(&oA, &oB, request, result);
+  return result;
+}
+
 // Independent check: the probe moved by the answer is free (reference code,
 // which shares nothing with the fast path).
 bool FreeAfter(const Model& P, const Isometry3& X_WP, const Model& S, const Isometry3& X_WS,
@@ -149,11 +160,7 @@ TEST(PolyDepth, RotatedBoxesMatchFclEpa) {
     const Isometry3 X_WP = Pose(Vector3(U(rng), U(rng), U(rng)) * 0.6,
                                 Quaternion(U(rng), U(rng), U(rng), U(rng)));
     const Isometry3 X_WS = Pose(Vector3::Zero(), Quaternion(Eigen::AngleAxisd(0.3, Vector3::UnitY())));
-    fcl::CollisionObjectd oP(fcl_P, X_WP), oS(fcl_S, X_WS);
-    fcl::CollisionRequestd request(1, true);
-    request.gjk_solver_type = fcl::GST_INDEP;
-    fcl::CollisionResultd fcl_result;
-    fcl::collide(&oP, &oS, request, fcl_result);
+    const fcl::CollisionResultd fcl_result = FclEpaCollide(fcl_P, X_WP, fcl_S, X_WS);
     const PenetrationResult r = solver.Solve(X_WP, X_WS);
     ASSERT_EQ(r.in_collision, fcl_result.isCollision()) << "case " << i;
     if (!r.in_collision) continue;
@@ -178,11 +185,7 @@ TEST(PolyDepth, IcosphereAgainstBoxMatchesFclConvexEpa) {
     const Isometry3 X_WP = Pose(Vector3(U(rng) * 0.7, U(rng) * 0.7, 0.6 + 0.1 * U(rng)),
                                 Quaternion(U(rng), U(rng), U(rng), U(rng)));
     const Isometry3 X_WS = Pose(Vector3::Zero());
-    fcl::CollisionObjectd oP(fcl_P, X_WP), oS(fcl_S, X_WS);
-    fcl::CollisionRequestd request(1, true);
-    request.gjk_solver_type = fcl::GST_INDEP;
-    fcl::CollisionResultd fcl_result;
-    fcl::collide(&oP, &oS, request, fcl_result);
+    const fcl::CollisionResultd fcl_result = FclEpaCollide(fcl_P, X_WP, fcl_S, X_WS);
     const PenetrationResult r = solver.Solve(X_WP, X_WS);
     ASSERT_EQ(r.in_collision, fcl_result.isCollision()) << "case " << i;
     if (!r.in_collision) continue;
