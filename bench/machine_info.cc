@@ -72,4 +72,10 @@ MachineInfo ReadMachineInfo(const std::string& source_dir) {
   return m;
 }
 
+std::string MachineMarkdown(const MachineInfo& m) {
+  return "- CPU: " + m.cpu_model + " (" + std::to_string(m.num_cpus) +
+         " logical CPUs), load average at the end " + ReadLoadAverage() + "\n- date " + m.date_utc +
+         ", commit " + m.git_commit + ", build " + m.build_type + ", " + m.compiler + "\n";
+}
+
 }  // namespace pd_bench

@@ -18,4 +18,8 @@ struct MachineInfo {
 MachineInfo ReadMachineInfo(const std::string& source_dir);
 std::string ReadLoadAverage();
 
+// The two Markdown bullet lines every report starts with: CPU and load
+// average now; date, commit, build type and compiler.
+std::string MachineMarkdown(const MachineInfo& m);
+
 }  // namespace pd_bench

@@ -1,32 +1,94 @@
 #!/usr/bin/env bash
 # Servo-loop benchmark: the real haptic_server and probe_replay as separate
 # processes over LCM UDP multicast, inside a private network namespace
-# (scripts/netns_run.sh), for each default scene, plus the transport-only
-# echo_server as the floor. Writes bench/results/loop_latency.md and .csv.
+# (scripts/netns_run.sh), for every scene in the table below (a box pair up
+# to 164k scene triangles, the default scenes), plus the transport-only
+# echo_server as the floor. Writes bench/results/loop_latency.md, .csv and
+# PNG plots (bench/loop_report.sh).
 #
-#   bench/run_loop_bench.sh [--minutes M]   (default 1; the 10-minute target: --minutes 10)
+#   bench/run_loop_bench.sh [--minutes M] [--quick] [--only a,b,...]
 #
-# Each run replays the scene's committed trajectory, repeated (time-shifted)
-# to last about M minutes. Reported: achieved rate, deadline misses, period
-# jitter and per-tick compute percentiles (server), pose-to-wrench round trip
-# (replay), and the round-trip ratio against the echo measured in the same run.
+#   --minutes M  length of each run (default 1)
+#   --quick      6 s per run (the whole sweep in under 3 minutes)
+#   --only LIST  run only these scenes (and the echo), comma-separated
+# Environment: BUILD_DIR (default build/) is where it configures and builds
+# the four executables it needs; LOOP_BENCH_OUT (default bench/results) is
+# where the report goes; LOOP_BENCH_REUSE=DIR re-writes the report from an
+# earlier run's work directory without running anything.
+#
+# Each run replays the scene's trajectory (a committed CSV, or a probe_sim
+# parameter file turned into one), repeated to the run length, with
+# haptic_server --timing-log recording every tick; the server's CPU use is
+# read from /proc over the replay (bench/loop_cpu.sh).
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
-MINUTES=1
+
+# The scenes, in run order: name, config file, trajectory (.csv as is, or a
+# probe_sim .params.yaml), all relative to the repository. A scene whose
+# config file does not exist (yet) is skipped with a message.
+SCENES=(
+  "box_pair             bench/scenes/box_pair.yaml             bench/scenes/box_pair.params.yaml"
+  "ball_on_sphere_1k    bench/scenes/ball_on_sphere_1k.yaml    bench/scenes/ball_on_sphere_1k.params.yaml"
+  "ball_on_sphere_5k    bench/scenes/ball_on_sphere_5k.yaml    bench/scenes/ball_on_sphere_5k.params.yaml"
+  "knot_6k              bench/scenes/knot_6k.yaml              bench/scenes/knot_6k.params.yaml"
+  "camel_20k            bench/scenes/camel_20k.yaml            bench/scenes/camel_20k.params.yaml"
+  "ball_on_sphere_20k   bench/scenes/ball_on_sphere_20k.yaml   bench/scenes/ball_on_sphere_20k.params.yaml"
+  "armadillo_52k        bench/scenes/armadillo_52k.yaml        bench/scenes/armadillo_52k.params.yaml"
+  "bunny_75k            bench/scenes/bunny_75k.yaml            bench/scenes/bunny_75k.params.yaml"
+  "elephant_bunny_164k  bench/scenes/elephant_bunny_164k.yaml  bench/scenes/elephant_bunny_164k.params.yaml"
+  "box_on_box           config/box_on_box.yaml                 probes/trajectories/box_on_box.csv"
+  "spoon_in_cup         config/spoon_in_cup.yaml               probes/trajectories/spoon_in_cup.csv"
+  "peg_in_hole          config/peg_in_hole.yaml                probes/trajectories/peg_in_hole.csv"
+  "primitives_only      config/primitives_only.yaml            probes/trajectories/primitives_only.csv"
+  "table_objects        config/table_objects.yaml              probes/trajectories/table_objects.csv"
+  "many_objects         config/many_objects.yaml               probes/trajectories/many_objects.csv"
+)
+
+MINUTES=1 QUICK=0 ONLY=""
 while (($#)); do
   case "$1" in
-    --minutes) MINUTES="$2"; shift 2 ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
-    *) echo "run_loop_bench: unknown argument '$1'" >&2; exit 2 ;;
+    --minutes) MINUTES="${2:-}"; shift 2 ;;
+    --quick) QUICK=1; shift ;;
+    --only) ONLY="${2:-}"; shift 2 ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    *) echo "run_loop_bench: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
+[[ "$MINUTES" =~ ^[0-9]+([.][0-9]+)?$ ]] && awk -v m="$MINUTES" 'BEGIN { exit !(m > 0) }' ||
+  { echo "run_loop_bench: --minutes '$MINUTES' is not a positive number" >&2; exit 2; }
+SECONDS_PER_RUN=$(awk -v m="$MINUTES" -v q="$QUICK" 'BEGIN { print q ? 6 : int(m * 60 + 0.5) }')
+selected() { [[ -z "$ONLY" || ",$ONLY," == *",$1,"* ]]; }
+if [[ -n "$ONLY" ]]; then
+  known=" $(for row in "${SCENES[@]}"; do read -r n _ <<< "$row"; printf '%s ' "$n"; done)"
+  for want in ${ONLY//,/ }; do
+    [[ "$known" == *" $want "* ]] || { echo "run_loop_bench: --only: no scene '$want' (scenes:$known)" >&2; exit 2; }
+  done
+fi
+
+BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
+BIN="$BUILD_DIR/bin"
+OUT="${LOOP_BENCH_OUT:-$ROOT/bench/results}"
+WORK="${LOOP_BENCH_REUSE:-}"
+if [[ -n "$WORK" ]]; then
+  exec "$ROOT/bench/loop_report.sh" "$WORK" "$OUT"
+fi
+
 "$ROOT/scripts/install_deps.sh" >/dev/null
-"$ROOT/scripts/build.sh" >/dev/null
-BIN="$ROOT/build/bin"
-OUT="$ROOT/bench/results"
-# LOOP_BENCH_REUSE=DIR re-writes the report from an earlier run's results.
-WORK="${LOOP_BENCH_REUSE:-$(mktemp -d /tmp/loop_bench.XXXXXX)}"
-mkdir -p "$OUT"
+echo "run_loop_bench: building haptic_server, probe_replay, probe_sim, echo_server in $BUILD_DIR" >&2
+cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$BUILD_DIR" -j"$(nproc)" --target haptic_server probe_replay probe_sim echo_server >/dev/null
+# The bench scenes name their meshes as ../../build/meshes/*.off.
+"$ROOT/scripts/fetch_meshes.sh" "$ROOT/build/meshes" >/dev/null
+
+WORK="$(mktemp -d /tmp/loop_bench.XXXXXX)"
+echo "run_loop_bench: $SECONDS_PER_RUN s per run; work directory $WORK" >&2
+{
+  echo "seconds_per_run=$SECONDS_PER_RUN"
+  echo "command=bench/run_loop_bench.sh $([[ $QUICK == 1 ]] && echo --quick || echo "--minutes $MINUTES")"
+  echo "commit=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "dirty=$([[ -n "$(git -C "$ROOT" status --porcelain 2>/dev/null)" ]] && echo 1 || echo 0)"
+  echo "start_utc=$(date -u '+%Y-%m-%d %H:%M:%S UTC')"
+} > "$WORK/meta.txt"
 
 # Repeats a CSV trajectory (time,x,y,z,qw,qx,qy,qz) until it lasts `seconds`.
 repeat_trajectory() {
@@ -44,81 +106,62 @@ repeat_trajectory() {
     }' "$src" > "$dst"
 }
 
-run_one() {  # name server-command...
-  local name="$1"; shift
-  local traj_src="$ROOT/probes/trajectories/${TRAJ_SCENE}.csv"
-  local traj="$WORK/${name}.csv"
-  repeat_trajectory "$traj_src" "$((MINUTES * 60))" "$traj"
-  echo "run_loop_bench: $name ($MINUTES min)..." >&2
-  set +e
+# run_one NAME CONFIG TRAJECTORY_SOURCE SERVER_EXE [SERVER_ARGS...]
+run_one() {
+  local name="$1" config="$2" traj_src="$3" server_exe="$4"; shift 4
+  local dir="$WORK/$name"
+  mkdir -p "$dir"
+  if [[ "$traj_src" == *.params.yaml ]]; then
+    "$BIN/probe_sim" --params "$traj_src" --csv-out "$dir/one_cycle.csv" >/dev/null
+    traj_src="$dir/one_cycle.csv"
+  fi
+  repeat_trajectory "$traj_src" "$SECONDS_PER_RUN" "$dir/trajectory.csv"
+  # The replay, wrapped so that both processes' CPU time is read (loop_cpu.sh).
+  printf '#!/bin/sh\nexec "%s" "%s" "%s" -- "%s" "$@"\n' "$ROOT/bench/loop_cpu.sh" "$server_exe" \
+    "$dir/cpu.txt" "$BIN/probe_replay" > "$dir/replay_wrapped"
+  chmod +x "$dir/replay_wrapped"
+  {
+    echo "name=$name"
+    echo "config=$config"
+    echo "load_before=$(cut -d' ' -f1-3 /proc/loadavg)"
+  } > "$dir/run.txt"
+  local t0=$SECONDS rc=0
   "$ROOT/scripts/netns_run.sh" "$ROOT/probes/scripts/run_session.sh" \
-    --out-dir "$WORK/$name" --replay "$BIN/probe_replay" --trajectory "$traj" \
-    --replay-arg --max-superseded --replay-arg 0.2 -- "$@" > "$WORK/$name.log" 2>&1
-  local rc=$?
-  set -e
-  echo "$rc" > "$WORK/$name.rc"
+    --out-dir "$dir" --replay "$dir/replay_wrapped" --trajectory "$dir/trajectory.csv" \
+    --replay-arg --max-superseded --replay-arg 0.5 -- "$server_exe" "$@" > "$dir/session.log" 2>&1 || rc=$?
+  { echo "exit=$rc"; echo "load_after=$(cut -d' ' -f1-3 /proc/loadavg)"; } >> "$dir/run.txt"
+  local line
+  line=$(grep -h "haptic_server summary" "$dir/server.out" 2>/dev/null | tail -1 |
+         sed -n 's/.*rate_hz=\([^ ]*\) deadline_misses=\([^ ]*\).*/rate \1 Hz, misses \2/p' || true)
+  echo "run_loop_bench: $name done in $((SECONDS - t0)) s (exit $rc${line:+; $line}; load $(cut -d' ' -f1 /proc/loadavg))" >&2
+  echo "$name" >> "$WORK/runs.txt"
 }
 
-if [[ -z "${LOOP_BENCH_REUSE:-}" ]]; then
-  for scene in box_on_box spoon_in_cup peg_in_hole; do
-    TRAJ_SCENE=$scene run_one "$scene" "$BIN/haptic_server" --config "$ROOT/config/$scene.yaml"
-  done
-  TRAJ_SCENE=box_on_box run_one echo "$BIN/echo_server"
-fi
 
-commit="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
-[[ -z "$(git -C "$ROOT" status --porcelain 2>/dev/null)" ]] || commit="$commit-dirty"
-cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//') ($(nproc) CPUs)"
-csv="$OUT/loop_latency.csv"
-echo "run,exit,poses_sent,answered,superseded,lost,rtt_p50_us,rtt_p99_us,rtt_max_us,achieved_rate_hz,deadline_misses,jitter_p99_us,jitter_max_us,compute_p50_us,compute_p99_us,compute_max_us,max_force_N" > "$csv"
-echo_p50=""; echo_p99=""
-for name in box_on_box spoon_in_cup peg_in_hole echo; do
-  s="$WORK/$name/summary.json"
-  rc=$(cat "$WORK/$name.rc")
-  if [[ ! -f "$s" ]]; then echo "$name,$rc,,,,,,,,,,,,,,," >> "$csv"; continue; fi
-  row=$(jq -r --arg n "$name" --arg rc "$rc" '[ $n, $rc, .poses_sent, .answered, .superseded, .lost,
-      .latency_us.p50, .latency_us.p99, .latency_us.max,
-      (.server_status.achieved_rate_hz // ""), (.server_status.deadline_misses // ""),
-      (.server_status.period_jitter_p99_us // ""), (.server_status.period_jitter_max_us // ""),
-      (.server_status.compute_p50_us // ""), (.server_status.compute_p99_us // ""),
-      (.server_status.compute_max_us // ""), .max_force_N ] | @csv' "$s" | tr -d '"')
-  echo "$row" >> "$csv"
-  if [[ $name == echo ]]; then
-    echo_p50=$(jq -r '.latency_us.p50' "$s"); echo_p99=$(jq -r '.latency_us.p99' "$s")
+runs=()
+for row in "${SCENES[@]}"; do
+  read -r name config traj <<< "$row"
+  selected "$name" || continue
+  if [[ ! -f "$ROOT/$config" ]]; then
+    echo "run_loop_bench: $name skipped: $config does not exist" >&2; continue
   fi
+  if [[ ! -f "$ROOT/$traj" ]]; then
+    echo "run_loop_bench: $name skipped: no trajectory $traj" >&2; continue
+  fi
+  runs+=("$row")
 done
+echo "run_loop_bench: ${#runs[@]} scenes + echo, about $(( (${#runs[@]} + 1) * (SECONDS_PER_RUN + 3) )) s" >&2
 
-# The server's own exit summary holds whole-run misses and compute p99.
-server_line() { { grep -h "haptic_server summary" "$WORK/$1/server.out" "$WORK/$1/server.err" 2>/dev/null || true; } | tail -1; }
-field() { local v; v=$(sed -n "s/.* $2=\([^ ]*\).*/\1/p" <<< "$1"); echo "${v:--}"; }
+# The transport floor first, then the scenes.
+i=0
+echo "run_loop_bench: [$((++i))/$(( ${#runs[@]} + 1 ))] echo (transport only)" >&2
+run_one echo "-" "$ROOT/bench/scenes/box_pair.params.yaml" "$BIN/echo_server"
+for row in "${runs[@]}"; do
+  read -r name config traj <<< "$row"
+  echo "run_loop_bench: [$((++i))/$(( ${#runs[@]} + 1 ))] $name ($config)" >&2
+  run_one "$name" "$config" "$ROOT/$traj" "$BIN/haptic_server" --config "$ROOT/$config" \
+    --timing-log "$WORK/$name/ticks.csv" --timing-log-ticks $(( (SECONDS_PER_RUN + 120) * 1000 ))
+done
+echo "end_utc=$(date -u '+%Y-%m-%d %H:%M:%S UTC')" >> "$WORK/meta.txt"
 
-md="$OUT/loop_latency.md"
-{
-  echo "# Servo loop rate and latency"
-  echo
-  echo "Generated by \`bench/run_loop_bench.sh --minutes $MINUTES\`; every number below was measured in this run."
-  echo
-  echo "| | |"; echo "|---|---|"
-  echo "| CPU | $cpu |"
-  echo "| Date | $(date -u '+%Y-%m-%d %H:%M:%S UTC') |"
-  echo "| Commit | \`$commit\` |"
-  echo "| Load average at end | $(cut -d' ' -f1-3 /proc/loadavg) |"
-  echo
-  echo "Each run: \`haptic_server\` (or the transport-only \`echo_server\`) and \`probe_replay\` as separate processes over LCM udpm in one private network namespace; the replay plays the scene's committed 1 kHz trajectory, repeated to last $MINUTES min. Round trip = replay send to wrench receipt (replay's CLOCK_MONOTONIC), so it includes up to one servo period of waiting for the next tick."
-  echo
-  echo "| Run | Poses sent | Answered | Superseded | Lost | RTT p50 us | RTT p99 us | RTT max us | RTT p50 / echo | Rate Hz | Deadline misses (whole run) | Jitter p99 us (whole run) | Compute p99 us (whole run) | Compute max us | Max force N |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-  for name in box_on_box spoon_in_cup peg_in_hole echo; do
-    s="$WORK/$name/summary.json"
-    [[ -f "$s" ]] || { echo "| $name | failed (exit $(cat "$WORK/$name.rc")) |||||||||||||| |"; continue; }
-    line=$(server_line "$name")
-    p50=$(jq -r '.latency_us.p50' "$s")
-    ratio=$(awk -v a="$p50" -v b="$echo_p50" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "-" }')
-    echo "| $name | $(jq -r '.poses_sent' "$s") | $(jq -r '.answered' "$s") | $(jq -r '.superseded' "$s") | $(jq -r '.lost' "$s") | $p50 | $(jq -r '.latency_us.p99' "$s") | $(jq -r '.latency_us.max' "$s") | $ratio | $(field "$line" rate_hz) | $(field "$line" deadline_misses) | $(field "$line" jitter_p99_us) | $(field "$line" compute_p99_us) | $(field "$line" compute_max_us) | $(jq -r '.max_force_N | . * 1000 | round / 1000' "$s") |"
-  done
-  echo
-  echo "Targets (issue 3): zero deadline misses over 10 minutes; per-tick compute p99 <= 250 us; round trip within 1.3x of the echo. Superseded poses are poses that arrived within the same servo period as a newer one: the fixed-rate loop renders the newest pose, and the older one is answered by that newer wrench; lost = never followed by an answer."
-  echo
-  echo "CSV: \`loop_latency.csv\`. Raw per-pose results were in $WORK (not committed)."
-} > "$md"
-cat "$md"
+"$ROOT/bench/loop_report.sh" "$WORK" "$OUT"

@@ -11,7 +11,7 @@ HapticRenderer::HapticRenderer(const SceneConfig& config, const SceneModels& mod
       velocity_(config.coupling.velocity_filter_hz),
       envelope_(config.servo.soft_engage_s, config.servo.watchdog_timeout_s,
                 config.servo.watchdog_ramp_s),
-      penalty_(models.tool, models.objects, config.contact, pd_options),
+      penalty_(models, config.contact, pd_options),
       tool_(config.tool.mass, config.tool.I_T, config.tool.gravity_W),
       coupling_(config.coupling, config.device.max_force, config.device.max_torque),
       limiter_(config.device, dt_),

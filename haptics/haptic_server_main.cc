@@ -1,6 +1,7 @@
 // haptic_server: 6-DOF haptic rendering over LCM.
 //
-//   haptic_server --config FILE [--lcm-url URL] [--duration S] [--check]
+//   haptic_server --config FILE [--lcm-url URL] [--cache-dir DIR] [--duration S] [--check]
+//                 [--timing-log FILE [--timing-log-ticks N]]
 //
 // Receives probe poses (haptics_msgs::probe_pose_t) on the pose channel,
 // renders contact with the scene through a virtual coupling at the servo
@@ -8,6 +9,10 @@
 // haptics_msgs::server_status_t on the status channel at ~10 Hz. Channels,
 // rate and gains come from the config file (see config/box_on_box.yaml).
 // Logs go to stderr; at exit one summary line goes to stdout.
+// --timing-log writes one CSV row per tick (period, compute time, contacts,
+// flags, deadline miss) after the loop stops, from a buffer of N records
+// allocated at start-up (haptics::TickLog): no allocation or file I/O in the
+// loop; ticks past N are counted in the file's first line, not stored.
 //
 // Exit codes: 0 clean stop (SIGINT, SIGTERM or --duration), 1 configuration
 // error (message on stderr names the file, key and allowed range; also a bad
@@ -20,7 +25,9 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <string>
@@ -32,6 +39,7 @@
 #include "haptics/load_scene_config.h"
 #include "haptics/realtime.h"
 #include "haptics/servo_loop.h"
+#include "pd_core/collision_model.h"
 
 namespace {
 
@@ -42,17 +50,21 @@ constexpr int kExitFailure = 2;
 struct Options {
   std::string config;
   std::string lcm_url;
+  std::string cache_dir;  // overrides the config's cache_dir
   double duration_s = 0.0;  // 0: until a signal
   bool check = false;
   std::string log_level = "info";
+  std::string timing_log;             // empty: no per-tick log
+  int64_t timing_log_ticks = 600000;  // records preallocated (10 min at 1 kHz)
 };
 
 std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCounts& rx) {
-  char line[640];
+  char line[768];
   std::snprintf(line, sizeof(line),
                 "haptic_server summary: ticks=%lld elapsed_s=%.3f rate_hz=%.1f deadline_misses=%lld "
                 "jitter_p99_us=%.1f compute_p99_us=%.1f compute_max_us=%.1f poses_received=%lld "
                 "poses_rejected=%lld poses_dropped=%lld messages_malformed=%lld "
+                "poses_out_of_order=%lld pose_seq_skipped=%lld pose_time_backwards=%lld "
                 "force_saturations=%lld rate_limited=%lld watchdog_trips=%lld pd_invalid=%lld "
                 "nonfinite_outputs=%lld realtime=%d",
                 static_cast<long long>(s.ticks), s.elapsed_s, s.achieved_rate_hz,
@@ -60,6 +72,8 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 s.compute_max_us, static_cast<long long>(rx.received),
                 static_cast<long long>(s.renderer.poses_rejected.total()),
                 static_cast<long long>(rx.dropped), static_cast<long long>(rx.malformed),
+                static_cast<long long>(rx.out_of_order), static_cast<long long>(rx.seq_skipped),
+                static_cast<long long>(rx.time_backwards),
                 static_cast<long long>(s.renderer.limiter.saturated),
                 static_cast<long long>(s.renderer.limiter.rate_limited),
                 static_cast<long long>(s.renderer.watchdog_trips),
@@ -71,11 +85,18 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
 int Serve(const Options& opt, sigset_t* signals) {
   haptics::SceneConfig config = haptics::LoadSceneConfig(opt.config);
   if (!opt.lcm_url.empty()) config.lcm.url = opt.lcm_url;
-  const haptics::SceneModels models = haptics::BuildSceneModels(config);
-  spdlog::info("scene '{}': tool {} triangles, {} objects, device {} ({} N, {} N·m), {} Hz",
-               config.name, models.tool->mesh().num_triangles(), models.objects.size(),
+  const haptics::SceneModels models = haptics::BuildSceneModels(config, opt.cache_dir);
+  spdlog::info("scene '{}': tool {}, {} objects, device {} ({} N, {} N·m), {} Hz",
+               config.name, models.tool->Describe(), models.objects.size(),
                config.device.name, config.device.max_force, config.device.max_torque,
                config.servo.rate_hz);
+  {
+    // Triangles the loop may query (meshes; primitives are exact shapes).
+    auto triangles = [](const pd::Geometry& g) { return g.model() ? g.model()->mesh().num_triangles() : 0; };
+    int64_t scene_triangles = 0;
+    for (const haptics::SceneObject& object : models.objects) scene_triangles += triangles(*object.geometry);
+    spdlog::info("triangles: tool {}, scene objects {}", triangles(*models.tool), scene_triangles);
+  }
   if (opt.check) {
     std::printf("haptic_server: %s OK\n", opt.config.c_str());
     return kExitOk;
@@ -114,6 +135,19 @@ int Serve(const Options& opt, sigset_t* signals) {
   loop_options.cpu = config.servo.cpu;
   loop_options.realtime_priority = config.servo.realtime_priority;
   loop_options.status_rate_hz = config.servo.status_rate_hz;
+  std::unique_ptr<haptics::TickLog> tick_log;
+  if (!opt.timing_log.empty()) {
+    // Fail now, not after the run, if the file cannot be written.
+    std::FILE* probe = std::fopen(opt.timing_log.c_str(), "w");
+    if (probe == nullptr) {
+      std::fprintf(stderr, "haptic_server: --timing-log: cannot write '%s': %s\n", opt.timing_log.c_str(),
+                   std::strerror(errno));
+      return kExitConfig;
+    }
+    std::fclose(probe);
+    tick_log = std::make_unique<haptics::TickLog>(static_cast<size_t>(opt.timing_log_ticks));
+    loop_options.tick_log = tick_log.get();
+  }
   if (loop_options.cpu >= haptics::NumCpus()) {
     spdlog::warn("servo.cpu {} does not exist ({} CPUs online); not pinning", loop_options.cpu,
                  haptics::NumCpus());
@@ -158,6 +192,15 @@ int Serve(const Options& opt, sigset_t* signals) {
   receiver.StopThread();
   std::printf("%s\n", SummaryLine(loop.Summary(), receiver.counts()).c_str());
   std::fflush(stdout);
+  if (tick_log) {
+    std::string error;
+    if (!tick_log->WriteCsv(opt.timing_log, 1e6 / config.servo.rate_hz, &error)) {
+      std::fprintf(stderr, "haptic_server: --timing-log: %s\n", error.c_str());
+      return kExitFailure;
+    }
+    spdlog::info("timing log {}: {} ticks ({} not logged: --timing-log-ticks {})", opt.timing_log,
+                 tick_log->size(), tick_log->not_logged(), opt.timing_log_ticks);
+  }
   return kExitOk;
 }
 
@@ -171,11 +214,19 @@ int main(int argc, char** argv) {
   CLI::App app{"6-DOF haptic rendering server: probe poses in, wrenches out, over LCM."};
   app.add_option("--config", opt.config, "scene YAML file (see config/)")->required();
   app.add_option("--lcm-url", opt.lcm_url, "LCM URL, overrides lcm.url of the config");
+  app.add_option("--cache-dir", opt.cache_dir,
+                 "directory of the mesh precomputation cache, overrides cache_dir of the config");
   app.add_option("--duration", opt.duration_s, "stop after this many seconds (default: run until SIGINT/SIGTERM)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--check", opt.check, "load and validate the config, build the scene, then exit");
   app.add_option("--log-level", opt.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+  app.add_option("--timing-log", opt.timing_log,
+                 "write per-tick timing (period, compute, contacts, flags, miss) as CSV to FILE at exit");
+  app.add_option("--timing-log-ticks", opt.timing_log_ticks,
+                 "records preallocated for --timing-log; later ticks are counted, not stored")
+      ->check(CLI::Range(int64_t{1}, int64_t{100'000'000}))
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

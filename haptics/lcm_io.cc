@@ -3,6 +3,8 @@
 #include <pthread.h>
 #include <time.h>
 
+#include <limits>
+
 namespace haptics {
 
 using haptics_msgs::wrench_t;
@@ -84,6 +86,16 @@ void PoseReceiver::OnMessage(const void* data, int size) {
     malformed_.fetch_add(1, std::memory_order_relaxed);
     return;
   }
+  const PoseSequenceEvent order = sequence_.Observe(msg.seq, msg.utime);
+  if (order.out_of_order) out_of_order_.fetch_add(1, std::memory_order_relaxed);
+  if (order.time_backwards) time_backwards_.fetch_add(1, std::memory_order_relaxed);
+  if (order.skipped > 0) {
+    // One writer (this thread): a saturating add by load and store.
+    const int64_t before = seq_skipped_.load(std::memory_order_relaxed);
+    const int64_t room = std::numeric_limits<int64_t>::max() - before;
+    seq_skipped_.store(order.skipped > room ? std::numeric_limits<int64_t>::max() : before + order.skipped,
+                       std::memory_order_relaxed);
+  }
   PoseSample& slot = out_->WriteSlot();
   slot = ToPoseSample(msg);
   slot.receive_time_ns = MonotonicNanos();
@@ -92,8 +104,14 @@ void PoseReceiver::OnMessage(const void* data, int size) {
 }
 
 ReceiverCounts PoseReceiver::counts() const {
-  return {received_.load(std::memory_order_relaxed), malformed_.load(std::memory_order_relaxed),
-          dropped_.load(std::memory_order_relaxed)};
+  ReceiverCounts c;
+  c.received = received_.load(std::memory_order_relaxed);
+  c.malformed = malformed_.load(std::memory_order_relaxed);
+  c.dropped = dropped_.load(std::memory_order_relaxed);
+  c.out_of_order = out_of_order_.load(std::memory_order_relaxed);
+  c.seq_skipped = seq_skipped_.load(std::memory_order_relaxed);
+  c.time_backwards = time_backwards_.load(std::memory_order_relaxed);
+  return c;
 }
 
 LcmWrenchPublisher::LcmWrenchPublisher(lcm::LCM* lcm, std::string channel)
@@ -139,6 +157,9 @@ haptics_msgs::server_status_t MakeStatusMessage(const LoopStatus& loop, const Re
   m.poses_rejected = loop.renderer.poses_rejected.total();
   m.poses_dropped = rx.dropped;
   m.messages_malformed = rx.malformed;
+  m.poses_out_of_order = rx.out_of_order;
+  m.pose_seq_skipped = rx.seq_skipped;
+  m.pose_time_backwards = rx.time_backwards;
   m.force_saturations = loop.renderer.limiter.saturated;
   m.watchdog_trips = loop.renderer.watchdog_trips;
   m.realtime = loop.realtime ? 1 : 0;

@@ -19,6 +19,7 @@
 
 #include "haptics/latest_value.h"
 #include "haptics/pose_sample.h"
+#include "haptics/pose_sequence.h"
 #include "haptics/servo_loop.h"
 #include "haptics/wrench_output.h"
 #include "haptics_msgs/probe_pose_t.hpp"
@@ -37,6 +38,10 @@ struct ReceiverCounts {
   int64_t received = 0;   // decoded poses handed to the loop
   int64_t malformed = 0;  // undecodable messages on the pose channel
   int64_t dropped = 0;    // poses superseded before the loop took them
+  // Order of the decoded poses (pose_sequence.h); counted, still rendered.
+  int64_t out_of_order = 0;    // seq not above the previous pose's
+  int64_t seq_skipped = 0;     // seq numbers jumped over (saturating)
+  int64_t time_backwards = 0;  // utime below the previous pose's
 };
 
 class PoseReceiver {
@@ -66,7 +71,9 @@ class PoseReceiver {
   lcm::Subscription* subscription_ = nullptr;
   std::thread thread_;
   std::atomic<bool> stop_{false};
+  PoseSequenceMonitor sequence_;  // receive thread only
   std::atomic<int64_t> received_{0}, malformed_{0}, dropped_{0};
+  std::atomic<int64_t> out_of_order_{0}, seq_skipped_{0}, time_backwards_{0};
 };
 
 class LcmWrenchPublisher final : public WrenchSink {

@@ -90,6 +90,9 @@ Matrix3 ReadInertia(const YamlMap& tool) {
 ToolConfig ReadTool(const YamlMap& m, const std::string& dir) {
   ToolConfig tool;
   tool.shape = ReadShapeConfig(m.Map("shape"), dir);
+  if (IsPlane(tool.shape))
+    m.source().Fail(m.Path("shape.type"), "'plane' is unbounded and cannot be the tool; use a "
+                                          "bounded shape (box, sphere, capsule, cylinder, mesh, ...)");
   tool.X_TG = ReadPoseOr(m, "geometry_pose");
   tool.mass = m.Number("mass", Range::Positive(10.0, "kg"));
   tool.I_T = ReadInertia(m);
@@ -236,6 +239,11 @@ SceneConfig LoadSceneConfig(const std::string& path) {
   config.coupling = ReadCoupling(root.Map("coupling"), config.device);
   config.servo = ReadServo(root.Map("servo"));
   if (root.Has("lcm")) config.lcm = ReadLcm(root.Map("lcm"));
+  if (root.Has("cache_dir")) {
+    std::filesystem::path cache(root.String("cache_dir"));
+    if (cache.is_relative()) cache = std::filesystem::path(dir) / cache;
+    config.cache_dir = cache.lexically_normal().string();
+  }
   if (root.Has("description")) root.Get("description", "");  // free text
   root.WarnUnknownKeys();
   return config;

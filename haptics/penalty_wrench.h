@@ -1,6 +1,9 @@
 #pragma once
-// Penalty contact between the tool and the scene objects from PolyDepth
-// penetration depth, one warm-started pd::PolyDepthSolver per object.
+// Penalty contact between the tool and the scene objects from penetration
+// depth: a broad phase (broad_phase.h) picks the objects the tool's motion
+// over the tick can reach, and one warm-started pd::PairPdSolver per object
+// (closed form, GJK/EPA or PolyDepth, whichever the pair's kinds need) gives
+// the PD of each. Culled objects cost nothing; their warm start is dropped.
 //
 // Force, per object in contact, with PD depth d along the unit escape
 // direction n (result.normal_W: moving the tool by d n separates it):
@@ -20,10 +23,14 @@
 //    opposite one depending on the sign of a tiny tilt, a bang-bang torque
 //    that chatters at any gain.
 //  - kPressureCentre (default): each region acts at its centre of pressure
-//    c_i: the tool vertices inside the object (closed objects) and below the
-//    region's contact plane, weighted by their depth below it, e_v = d_i -
+//    c_i: the tool's pressure points (pd::Geometry::surface_points(): mesh
+//    vertices, box lattice points, rings on round shapes) inside the object
+//    (Geometry::Contains; none for an open mesh) and below the region's
+//    contact plane, weighted by their depth below it, e_v = d_i -
 //    n_i · (v - p_i), plus p_i with a small weight (0.01 d_i; the only point
-//    when no vertex is inside, e.g. an edge-edge contact). It moves
+//    when no pressure point is inside, e.g. an edge-edge contact) unless p_i
+//    is itself one of those pressure points (within 1e-9 of the tool's
+//    size). A sphere tool uses p_i alone: its forces pass through its centre. It moves
 //    continuously as the tool tilts and reduces to p_i for a vertex contact.
 //    The regions share the stiffness, k_i = k / N and b_i = b / N for N
 //    regions, and the torque is the moment of the object's PD force f_W
@@ -42,17 +49,19 @@
 // symmetric positive semi-definite (all the step needs).
 //
 // An answer PolyDepth could not verify (result.valid == false) is not used:
-// that object contributes nothing this tick and is counted. Objects whose
-// bounding sphere is farther from the tool's than the margin are not queried.
+// that object contributes nothing this tick and is counted. The wrench is the
+// sum over all objects in contact.
 #include <cstdint>
 #include <memory>
 #include <vector>
 
+#include "haptics/broad_phase.h"
+#include "haptics/build_scene.h"
 #include "haptics/scene_config.h"
 #include "haptics/scene_object.h"
 #include "haptics/spatial.h"
+#include "pd_core/pair_pd_solver.h"
 #include "pd_core/penetration_result.h"
-#include "pd_core/polydepth.h"
 
 namespace haptics {
 
@@ -60,25 +69,35 @@ struct ContactSummary {
   LinearizedWrench wrench;  // on the tool, at its origin, in W, with its K and D
   double max_depth = 0.0;   // deepest PD over objects (m)
   int num_regions = 0;      // contact regions summed over objects
-  int num_queried = 0;      // objects whose bounding spheres were close enough
+  int num_candidates = 0;   // objects the broad phase kept (PD queried)
+  int num_culled = 0;       // objects the broad phase skipped this tick
   int num_in_contact = 0;   // objects with a verified contact this tick
   int num_invalid = 0;      // objects whose PD was not verified this tick
 };
 
 class PenaltyContact {
  public:
-  PenaltyContact(std::shared_ptr<const pd::CollisionModel> tool, std::vector<SceneObject> objects,
-                 const ContactConfig& params, pd::PolyDepthOptions options = {});
+  // The tool geometry in its frame G, placed in the tool frame T by X_TG.
+  PenaltyContact(std::shared_ptr<const pd::Geometry> tool, const Isometry3& X_TG,
+                 std::vector<SceneObject> objects, const ContactConfig& params,
+                 pd::PolyDepthOptions options = {});
+  PenaltyContact(const SceneModels& models, const ContactConfig& params,
+                 pd::PolyDepthOptions options = {})
+      : PenaltyContact(models.tool, models.X_TG, models.objects, params, options) {}
 
-  // Contact at the tool's pose and velocity. The reference stays valid until
-  // the next call. Allocation-free once the solvers' scratch has grown.
+  // Contact at the tool's pose and velocity. The tool's previous pose (from
+  // the previous call) and this one bound its motion for the broad phase.
+  // The reference stays valid until the next call. Allocation-free once the
+  // solvers' scratch has grown.
   const ContactSummary& Compute(const RigidState& tool);
 
-  // Forget warm starts (after the tool jumped).
+  // Forget warm starts and the previous pose (after the tool jumped).
   void ResetWarmStarts();
 
   int num_objects() const { return static_cast<int>(objects_.size()); }
   const SceneObject& object(int i) const { return objects_[i]; }
+  const pd::PairPdSolver& solver(int i) const { return *solvers_[i]; }
+  const BroadPhase& broad_phase() const { return broad_phase_; }
   // The last PD answer for object i (in_collision false if it was culled).
   const pd::PenetrationResult& last_result(int i) const { return results_[i]; }
   int64_t invalid_count() const { return invalid_count_; }
@@ -88,19 +107,30 @@ class PenaltyContact {
  private:
   void AddObjectContact(const pd::PenetrationResult& r, const SceneObject& object,
                         const RigidState& tool);
-  // Tool vertices inside `object` and below some region's plane, into inside_.
+  // Tool pressure points inside `object` and below some region's plane, into inside_.
   void FindPressurePoints(const pd::PenetrationResult& r, const SceneObject& object);
 
-  std::shared_ptr<const pd::CollisionModel> tool_;
+  std::shared_ptr<const pd::Geometry> tool_;
+  Isometry3 X_TG_;
   std::vector<SceneObject> objects_;
   ContactConfig params_;
-  std::vector<std::unique_ptr<pd::PolyDepthSolver>> solvers_;
+  BroadPhase broad_phase_;
+  std::vector<std::unique_ptr<pd::PairPdSolver>> solvers_;
   std::vector<pd::PenetrationResult> results_;
   ContactSummary summary_;
+  // Broad-phase state.
+  bool have_previous_ = false;
+  WorldBox previous_box_W_;            // tool box at the previous call
+  std::vector<int> candidates_now_;    // this tick's candidates
+  std::vector<int> candidates_prev_;   // the previous tick's
+  std::vector<int64_t> candidate_tick_;  // per object: last tick it was a candidate
+  int64_t tick_ = 0;
   // Scratch, sized at construction.
-  std::vector<Vector3> p_WV_;               // tool vertices in W this tick
-  std::vector<std::pair<double, int>> candidates_;  // (depth below a plane, vertex)
-  std::vector<int> inside_;                 // candidate vertices inside the object
+  Isometry3 X_WG_ = Isometry3::Identity();          // tool geometry pose this tick
+  std::vector<Vector3> p_WV_;                       // tool pressure points in W (those below a plane)
+  std::vector<std::pair<double, int>> depth_points_;  // (depth below a plane, point)
+  std::vector<int> inside_;                         // points inside the object
+  double same_point_tol2_ = 0.0;  // (m²) a region point this close to a pressure point is it
   int64_t invalid_count_ = 0;
   int64_t query_count_ = 0;
 };

@@ -13,14 +13,26 @@
 
 namespace haptics {
 
-// Geometry sources. Sizes in metres; see pd_core/make_shapes.h for each shape.
+// Geometry sources. Sizes in metres. Primitives (plane, sphere, box, capsule,
+// cylinder) are exact shapes (pd::Geometry); the rest are triangle meshes:
+// loaded from a file or generated (see pd_core/make_shapes.h for each).
 struct MeshFileShape {
-  std::string path;   // absolute, resolved against the config file's directory
+  std::string path;    // absolute, resolved against the config file's directory
   double scale = 1.0;  // file units -> m
+  bool convex = false;  // declared convex: verified at load, solved by GJK/EPA
+  int max_triangles = 5'000'000;  // larger files are refused before loading (pd::MeshLoadOptions)
 };
+// Half-space z <= 0 of its frame: the object's pose places the plane (z-up,
+// through the pose origin). Scene objects only, never the tool.
+struct PlaneShape {};
+struct SphereShape { double radius; };
 struct BoxShape { Vector3 half_extents; };
+// Axis z: a segment of `length` between the cap centres, swept by a ball of
+// `radius` (overall length + 2 radius).
+struct CapsuleShape { double radius, length; };
+// Axis z, z in [-length/2, length/2].
+struct CylinderShape { double radius, length; };
 struct IcosphereShape { double radius; int subdivisions; };
-struct CylinderShape { double radius, length; int segments; };
 struct TorusShape { double major_radius, minor_radius; int major_segments, minor_segments; };
 struct USlotShape { Vector3 half_extents; double slot_width, slot_depth; };
 struct ThinPlateShape { double half_x, half_y, half_thickness; };
@@ -30,8 +42,9 @@ struct LRodShape { double arm_x, arm_y, width, thickness; };
 struct SpoonShape { pd::SpoonDimensions dims; };
 
 using ShapeVariant =
-    std::variant<MeshFileShape, BoxShape, IcosphereShape, CylinderShape, TorusShape, USlotShape,
-                 ThinPlateShape, CupShape, BlockWithHoleShape, LRodShape, SpoonShape>;
+    std::variant<MeshFileShape, PlaneShape, SphereShape, BoxShape, CapsuleShape, CylinderShape,
+                 IcosphereShape, TorusShape, USlotShape, ThinPlateShape, CupShape,
+                 BlockWithHoleShape, LRodShape, SpoonShape>;
 
 struct ShapeConfig {
   std::string key;  // where it was configured, e.g. "objects[1].shape" (for messages)
@@ -41,7 +54,7 @@ struct ShapeConfig {
 struct ObjectConfig {
   std::string name;
   ShapeConfig shape;
-  Isometry3 X_WS = Isometry3::Identity();  // pose of the object's mesh frame S in W
+  Isometry3 X_WS = Isometry3::Identity();  // pose of the object's geometry frame S in W
 };
 
 // The simulated tool T. Its mass properties are rendering parameters: the
@@ -65,7 +78,7 @@ struct ContactConfig {
   double stiffness = 0.0;     // N/m, penalty per metre of penetration depth
   double damping = 0.0;       // N·s/m, along the contact normal
   double torque_scale = 1.0;  // multiplies the torque of the local PDs
-  double cull_margin = 0.005;  // m, added to bounding-sphere distance tests
+  double cull_margin = 0.005;  // m, added to the broad phase's swept tool box (broad_phase.h)
   TorqueModel torque_model = TorqueModel::kPressureCentre;
 };
 
@@ -119,6 +132,9 @@ struct SceneConfig {
   DeviceConfig device;
   ServoConfig servo;
   LcmConfig lcm;
+  // Directory of the mesh precomputation cache (pd_core/model_cache.h),
+  // resolved against the config file's directory; "" (default): no cache.
+  std::string cache_dir;
   std::vector<std::string> warnings;  // also logged with spdlog
 };
 

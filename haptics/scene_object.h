@@ -1,16 +1,17 @@
 #pragma once
-// A static scene object ready for contact queries.
+// A static scene object ready for contact queries: its geometry (primitive,
+// convex mesh or general mesh) in its own frame S, placed in world by X_WS.
 #include <memory>
 #include <string>
 
 #include "haptics/spatial.h"
-#include "pd_core/collision_model.h"
+#include "pd_core/geometry.h"
 
 namespace haptics {
 
 struct SceneObject {
   std::string name;
-  std::shared_ptr<const pd::CollisionModel> model;  // in its mesh frame S
+  std::shared_ptr<const pd::Geometry> geometry;  // in its frame S
   Isometry3 X_WS = Isometry3::Identity();
 };
 

@@ -77,12 +77,14 @@ void ServoLoop::Run() {
   start_ns_ = NowNs();
   int64_t next = start_ns_ + period_ns;
   int64_t prev_wake = -1;
+  double period_us = 0.0;
   int64_t window_start = start_ns_;
   int64_t window_ticks = 0;
   while (!stop_.load(std::memory_order_relaxed)) {
     SleepUntil(next);
     const int64_t wake = NowNs();
     if (prev_wake >= 0) {
+      period_us = static_cast<double>(wake - prev_wake) * 1e-3;
       const double jitter_us = std::abs(static_cast<double>(wake - prev_wake - period_ns)) * 1e-3;
       window_jitter_us_.Add(jitter_us);
       jitter_hist_.Add(jitter_us);
@@ -99,10 +101,15 @@ void ServoLoop::Run() {
     compute_hist_.Add(compute_us);
     ++ticks_;
     next += period_ns;  // this tick's deadline: the next tick's start
-    if (end > next) {
+    const bool missed = end > next;
+    if (missed) {
       ++misses_;
       // More than a whole period late: skip the lost slots, do not burst.
       if (end > next + period_ns) next += ((end - next) / period_ns) * period_ns;
+    }
+    if (options_.tick_log != nullptr) {
+      options_.tick_log->Add({static_cast<float>(period_us), static_cast<float>(compute_us),
+                              out.contact_count, out.flags, missed});
     }
     if (++window_ticks >= static_cast<int64_t>(window)) {
       PublishStatus(end, window_ticks, end - window_start);

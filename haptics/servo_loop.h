@@ -10,7 +10,9 @@
 // misses (a tick finishing after the next tick's start; a tick more than a
 // period late skips the missed slots instead of bursting). At status_rate_hz
 // the loop summarises its window (nth_element on a preallocated copy) into a
-// LoopStatus the main thread takes without locks.
+// LoopStatus the main thread takes without locks. With
+// ServoLoopOptions::tick_log set, every tick also appends a TickRecord to
+// that preallocated log (timing_stats.h).
 #include <atomic>
 #include <cstdint>
 #include <thread>
@@ -36,6 +38,7 @@ struct ServoLoopOptions {
   int cpu = -1;                 // -1: no pinning
   int realtime_priority = 80;   // 0: do not ask for SCHED_FIFO
   double status_rate_hz = 10.0;
+  TickLog* tick_log = nullptr;  // optional: one TickRecord per tick (not owned)
 };
 
 // One status window (about 1 / status_rate_hz of ticks). Times in us.

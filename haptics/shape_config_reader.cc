@@ -7,6 +7,7 @@ namespace {
 
 // Sizes: up to 10 m; haptic scenes are centimetres, but meshes of rooms load.
 const Range kLength = Range::Positive(10.0, "m");
+const Range kLengthOrZero = Range::NonNegative(10.0, "m");
 
 ShapeVariant ReadVariant(const YamlMap& m, const std::string& type, const std::string& config_dir) {
   if (type == "mesh") {
@@ -20,14 +21,25 @@ ShapeVariant ReadVariant(const YamlMap& m, const std::string& type, const std::s
       m.source().Fail(m.Path("file"), "mesh file '" + s.path + "' does not exist (relative paths are "
                                       "resolved against the config file's directory)");
     s.scale = m.NumberOr("scale", 1.0, Range::Positive(1000.0, ""));
+    s.max_triangles = m.IntegerOr("max_triangles", s.max_triangles, 1, 50'000'000);
+    if (m.Has("convex")) s.convex = m.Choice("convex", {"true", "false"}) == "true";
     return s;
   }
+  if (type == "plane") return PlaneShape{};
+  if (type == "sphere") return SphereShape{m.Number("radius", kLength)};
   if (type == "box") return BoxShape{m.Vector("half_extents", kLength)};
+  if (type == "capsule")
+    return CapsuleShape{m.Number("radius", kLength), m.Number("length", kLengthOrZero)};
+  if (type == "cylinder") {
+    if (m.Has("segments")) {
+      m.IntegerOr("segments", 32, 3, 512);  // still range-checked: old configs stay valid
+      m.source().Warn(m.Path("segments"),
+                      "ignored: the cylinder is now an exact primitive (remove the key)");
+    }
+    return CylinderShape{m.Number("radius", kLength), m.Number("length", kLength)};
+  }
   if (type == "icosphere")
     return IcosphereShape{m.Number("radius", kLength), m.IntegerOr("subdivisions", 2, 0, 5)};
-  if (type == "cylinder")
-    return CylinderShape{m.Number("radius", kLength), m.Number("length", kLength),
-                         m.IntegerOr("segments", 32, 3, 512)};
   if (type == "torus")
     return TorusShape{m.Number("major_radius", kLength), m.Number("minor_radius", kLength),
                       m.IntegerOr("major_segments", 32, 3, 512),
@@ -70,8 +82,8 @@ ShapeVariant ReadVariant(const YamlMap& m, const std::string& type, const std::s
 
 const std::vector<std::string>& ShapeTypeNames() {
   static const std::vector<std::string> names = {
-      "mesh",    "box", "icosphere",       "cylinder", "torus", "u_slot",
-      "thin_plate", "cup", "block_with_hole", "l_rod",    "spoon"};
+      "plane", "sphere", "box", "capsule", "cylinder", "mesh", "icosphere", "torus",
+      "u_slot", "thin_plate", "cup", "block_with_hole", "l_rod", "spoon"};
   return names;
 }
 
@@ -83,5 +95,7 @@ ShapeConfig ReadShapeConfig(const YamlMap& shape, const std::string& config_dir)
   shape.WarnUnknownKeys();
   return config;
 }
+
+bool IsPlane(const ShapeConfig& shape) { return std::holds_alternative<PlaneShape>(shape.shape); }
 
 }  // namespace haptics

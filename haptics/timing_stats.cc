@@ -1,7 +1,10 @@
 #include "haptics/timing_stats.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 
 namespace haptics {
 namespace {
@@ -60,6 +63,38 @@ double DurationHistogram::Percentile(double p) const {
     if (seen >= rank) return b + 1 == bins_.size() ? max_ : std::min(max_, static_cast<double>(b + 1));
   }
   return max_;
+}
+
+TickLog::TickLog(size_t capacity) : records_(capacity) {}
+
+void TickLog::Add(const TickRecord& r) {
+  if (size_ < records_.size()) {
+    records_[size_++] = r;
+  } else {
+    ++not_logged_;
+  }
+}
+
+bool TickLog::WriteCsv(const std::string& path, double nominal_period_us, std::string* error) const {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) {
+    *error = "cannot write timing log '" + path + "': " + std::strerror(errno);
+    return false;
+  }
+  std::fprintf(f, "# nominal_period_us=%.3f ticks_logged=%zu ticks_not_logged=%lld\n", nominal_period_us,
+               size_, static_cast<long long>(not_logged_));
+  std::fprintf(f, "tick,period_us,compute_us,contact_count,flags,missed\n");
+  for (size_t i = 0; i < size_; ++i) {
+    const TickRecord& r = records_[i];
+    std::fprintf(f, "%zu,%.3f,%.3f,%d,%d,%d\n", i, r.period_us, r.compute_us, r.contact_count, r.flags,
+                 r.missed ? 1 : 0);
+  }
+  const bool ok = std::ferror(f) == 0;
+  if (std::fclose(f) != 0 || !ok) {
+    *error = "error writing timing log '" + path + "': " + std::strerror(errno);
+    return false;
+  }
+  return true;
 }
 
 }  // namespace haptics

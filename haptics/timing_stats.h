@@ -1,9 +1,11 @@
 #pragma once
 // Timing statistics for the servo loop, preallocated so that recording a
 // sample never allocates: a window of recent samples (percentiles by
-// nth_element on a preallocated copy) and a whole-run histogram.
+// nth_element on a preallocated copy), a whole-run histogram, and an optional
+// per-tick log of fixed capacity (TickLog, for haptic_server --timing-log).
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace haptics {
@@ -44,6 +46,38 @@ class DurationHistogram {
   std::vector<int64_t> bins_;
   int64_t count_ = 0;
   double max_ = 0.0;
+};
+
+// One servo tick, as kept by TickLog. Times in microseconds.
+struct TickRecord {
+  float period_us = 0.0f;     // wake-up to wake-up (0 for the first tick)
+  float compute_us = 0.0f;    // wake-up to after the wrench was handed over
+  int32_t contact_count = 0;  // contact regions this tick (WrenchOutput)
+  int32_t flags = 0;          // WrenchOutput::flags (kFlag* bits)
+  bool missed = false;        // finished after the next tick's start
+};
+
+// The per-tick timing log behind haptic_server --timing-log: a fixed number
+// of records allocated at construction, so Add never allocates; ticks past
+// the capacity are counted in not_logged(), not stored.
+class TickLog {
+ public:
+  explicit TickLog(size_t capacity);  // allocates here only
+  void Add(const TickRecord& r);
+  size_t size() const { return size_; }
+  size_t capacity() const { return records_.size(); }
+  int64_t not_logged() const { return not_logged_; }
+  const TickRecord& operator[](size_t i) const { return records_[i]; }
+  // Writes a CSV: one '#' comment line (nominal period, records, ticks not
+  // logged), then the header tick,period_us,compute_us,contact_count,flags,
+  // missed and one row per record. Returns false and sets *error (naming
+  // the file) if the file cannot be written.
+  bool WriteCsv(const std::string& path, double nominal_period_us, std::string* error) const;
+
+ private:
+  std::vector<TickRecord> records_;
+  size_t size_ = 0;
+  int64_t not_logged_ = 0;
 };
 
 }  // namespace haptics

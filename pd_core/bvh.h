@@ -37,6 +37,7 @@ class Bvh {
   }
 
  private:
+  friend struct ModelCacheAccess;  // pd_core/model_cache.cc (de)serialises the nodes
   int Build(const TriangleMesh& mesh, std::vector<Vector3>& centroids, int begin,
             int end, int level);
   std::vector<BvhNode> nodes_;

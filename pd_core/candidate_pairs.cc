@@ -27,7 +27,7 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
     const auto [ip, is] = stack[--top];
     const BvhNode& a = nodes_P[ip];
     const BvhNode& b = nodes_S[is];
-    if (BoxGapLowerBound(ProbeBox(a, pair.X_SP, q_center_S), b) > radius) continue;
+    if (!BoxesWithin(ProbeBox(a, pair.X_SP, q_center_S), b, radius)) continue;
     if (a.is_leaf() && b.is_leaf()) {
       leaf_pairs_.emplace_back(ip, is);
       continue;

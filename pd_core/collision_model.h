@@ -50,6 +50,7 @@ class CollisionModel {
   size_t MemoryBytes() const;
 
  private:
+  friend struct ModelCacheAccess;  // pd_core/model_cache.cc (de)serialises every field
   CollisionModel() = default;
   TriangleMesh mesh_;
   MeshTopology topology_;

@@ -57,8 +57,7 @@ void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double
   ForEachLeafPair(
       pair, use_list,
       [&](const BvhNode& a, const BvhNode& b) {
-        return BoxGapLowerBound(ProbeBox(a, pair.X_SP, q_S), b) <=
-               distance;
+        return BoxesWithin(ProbeBox(a, pair.X_SP, q_S), b, distance);
       },
       [&](int tp, int ts) {
         Vector3 p[3], s[3];

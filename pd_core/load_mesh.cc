@@ -154,10 +154,30 @@ void CheckOffHeader(const std::string& path, const std::string& head, uintmax_t 
   CheckCountsFitFile(path, "OFF", vertices, faces, size, 2, max_triangles);  // "0\n"
 }
 
+// assimp 5.2's PLY reader loops forever when no header line is exactly
+// "end_header" (e.g. "end_headergg", found by fuzzing and kept in
+// tests/fuzz/regressions/load_mesh/): require one before assimp reads the
+// file. Other unknown header lines are left to assimp, which skips them.
+void CheckPlyHeaderEnd(const std::string& path, const std::string& head) {
+  std::istringstream in(head);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.compare(0, 10, "end_header") != 0) continue;
+    std::istringstream words(line);
+    std::string first, rest;
+    words >> first >> rest;
+    if (first == "end_header" && rest.empty()) return;
+    Fail(path, "PLY header line '" + line.substr(0, 80) + "' is not 'end_header'");
+  }
+  Fail(path, "PLY header has no 'end_header' line within its first " + std::to_string(head.size()) +
+                 " bytes");
+}
+
 // PLY: "element vertex N" / "element face M" lines up to end_header.
 void CheckPlyHeader(const std::string& path, const std::string& head, uintmax_t size,
                     int64_t max_triangles) {
   if (head.compare(0, 3, "ply") != 0) return;
+  CheckPlyHeaderEnd(path, head);
   const size_t end = head.find("end_header");
   if (end == std::string::npos) return;
   std::istringstream in(head.substr(0, end));

@@ -14,7 +14,7 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S) {
   ForEachLeafPair(
       pair, use_list,
       [&](const BvhNode& a, const BvhNode& b) {
-        return BoxGapLowerBound(ProbeBox(a, pair.X_SP, offset_S), b) <= 0;
+        return BoxesWithin(ProbeBox(a, pair.X_SP, offset_S), b, 0.0);
       },
       [&](int tp, int ts) {
         Vector3 p[3], s[3];

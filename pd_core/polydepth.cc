@@ -183,19 +183,25 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // 1. Motion coherence: step off the previous answer along its normal by
   // about the motion since then, verify freedom, and iterate from there.
   const bool warm = coherent && options_.warm_start;
-  // Keep the leaf-pair list around the configuration we restart from.
+  // How far any probe point moved since the previous frame (m).
+  const double motion =
+      (warm && (s.has_previous || s.has_previous_free))
+          ? (pair.X_SP.p_SP - s.previous_X_SP.p_SP).norm() +
+                RotationAngleBetween(s.previous_X_SP.R_SP, pair.X_SP.R_SP) * probe_->radius()
+          : 0.0;
+  // Keep the leaf-pair list around the configuration we restart from, with
+  // room for the restart's step-off (about the motion) and the iterations'
+  // contact distance; a fast probe gets a wider list instead of a full BVH
+  // descent in every query.
   if (warm && (s.has_previous || s.has_previous_free)) {
     const Vector3 center = s.has_previous
                                ? s.previous_q_S
                                : Vector3(s.previous_X_SP.p_SP - pair.X_SP.p_SP);
-    const double need = 4.0 * options_.contact_tol * size;
+    const double need = 2.0 * motion + 6.0 * options_.contact_tol * size;
     if (!s.candidates.Covers(pair, center, center, need))
-      s.candidates.Build(pair, center, options_.candidate_radius * size);
+      s.candidates.Build(pair, center, std::max(options_.candidate_radius * size, 1.5 * need));
   }
   if (warm && s.has_previous) {
-    const double angle = RotationAngleBetween(s.previous_X_SP.R_SP, pair.X_SP.R_SP);
-    const double motion =
-        (pair.X_SP.p_SP - s.previous_X_SP.p_SP).norm() + angle * probe_->radius();
     double offset = motion + options_.contact_tol * size;
     for (int attempt = 0; attempt < 4; ++attempt, offset *= 4.0) {
       const Vector3 q0 = s.previous_q_S + offset * s.previous_n_S;
@@ -219,7 +225,16 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         if (InCollision(pair, q0)) continue;
         bool touched = false;
         const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
-        if (touched) s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
+        if (touched) {
+          s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
+        } else {
+          // Free all the way: the query only touches (the CCD counts no
+          // contact at the very end). Back off along the motion by the
+          // margin; without this the cold starts answered from outside the
+          // scene's hull, through the wall (tests/pd_core/test_hard_cases.cc).
+          const Vector3 q_b = margin * (back / len);
+          if (!InCollision(pair, q_b)) s.Iterate(pair, options_, size, q_b, Initializer::kMotionCoherence);
+        }
         break;
       }
     }

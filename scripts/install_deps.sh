@@ -6,10 +6,11 @@ PKGS=(
   libeigen3-dev libfcl-dev libccd-dev libassimp-dev
   liblcm-dev liblcm-bin libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev
-  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
   gnuplot-nox
   libcgal-demo assimp-testmodels
   iproute2 util-linux jq
+  clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer
 )
 missing=()
 for p in "${PKGS[@]}"; do

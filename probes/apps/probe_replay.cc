@@ -53,6 +53,24 @@ summary says which); 4 no server message within --start-delay.)";
 
 void SleepSeconds(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
 
+// The trajectory `times` times back to back, each copy starting one sample
+// period (the last one's) after the previous copy's last sample (for soak
+// runs; the shipped trajectories end where they start).
+probes::Trajectory Repeated(const probes::Trajectory& one, int times) {
+  const size_t n = one.size();
+  const double step = n > 1 ? one[n - 1].t - one[n - 2].t : 1e-3;
+  const double period = one.back().t - one.front().t + step;
+  probes::Trajectory all;
+  all.reserve(n * static_cast<size_t>(times));
+  for (int k = 0; k < times; ++k) {
+    for (const probes::PoseSample& s : one) {
+      all.push_back(s);
+      all.back().t += k * period;
+    }
+  }
+  return all;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,6 +85,7 @@ int main(int argc, char** argv) {
   double max_superseded = 0.0;
   int64_t first_seq = 0;
   bool realtime = false;
+  int repeat = 1;
 
   app.add_option("--trajectory", trajectory_path, "trajectory CSV or LCM log")
       ->required()->check(CLI::ExistingFile);
@@ -91,11 +110,16 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--first-seq", first_seq, "seq of the first pose")->capture_default_str();
   app.add_flag("--realtime", realtime, "ask for SCHED_FIFO for the sending thread");
+  app.add_option("--repeat", repeat,
+                 "send the trajectory this many times back to back, seq and time continuing "
+                 "(soak runs)")
+      ->capture_default_str()->check(CLI::Range(1, 100000));
   CLI11_PARSE(app, argc, argv);
 
   probes::Trajectory trajectory;
   try {
     trajectory = probes::LoadTrajectory(trajectory_path, pose_channel);
+    if (repeat > 1) trajectory = Repeated(trajectory, repeat);
     probes::RequireIsolatedNetworkForUdpm(url, "probe_replay");
   } catch (const std::exception& e) {
     std::cerr << "probe_replay: " << e.what() << "\n";

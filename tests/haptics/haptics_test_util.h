@@ -6,7 +6,12 @@
 #include <random>
 #include <string>
 
+#include <gtest/gtest.h>
+
+#include <initializer_list>
+
 #include "haptics/build_scene.h"
+#include "haptics/load_scene_config.h"
 #include "haptics/pose_sample.h"
 #include "haptics/scene_config.h"
 
@@ -70,6 +75,44 @@ inline std::filesystem::path MakeTempDir(const std::string& tag) {
 inline void WriteFile(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
+}
+
+// `text` with its first `from` replaced by `to` (unchanged for an empty
+// `from`); a `from` not in the text is a test bug and fails the test.
+inline std::string Edited(std::string text, const std::string& from, const std::string& to) {
+  if (from.empty()) return text;
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in the text";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// Loads and builds a scene file; the ConfigError message, "" if it built.
+inline std::string BuildError(const std::string& path) {
+  try {
+    BuildSceneModels(LoadSceneConfig(path));
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The scene at `path` must fail with "<path>: <key>: ..." containing `parts`.
+inline void ExpectConfigError(const std::string& path, const std::string& key,
+                              std::initializer_list<std::string> parts) {
+  const std::string message = BuildError(path);
+  ASSERT_FALSE(message.empty()) << "expected an error for " << key;
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_NE(message.find(key + ":"), std::string::npos) << message;
+  for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
+}
+
+// A tool state at rest at p_WT, turned by R_WT.
+inline RigidState ToolAt(const Vector3& p_WT, const Matrix3& R_WT = Matrix3::Identity()) {
+  RigidState s;
+  s.X_W.translation() = p_WT;
+  s.X_W.linear() = R_WT;
+  return s;
 }
 
 }  // namespace haptics::test

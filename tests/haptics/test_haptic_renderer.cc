@@ -156,7 +156,11 @@ TEST(HapticRenderer, UnverifiedPdRaisesTheFlag) {
   crippled.use_centroid = false;
   crippled.num_random = 0;
   crippled.num_sampling_directions = 0;
-  Rig rig(test::BoxOnBoxConfig(), crippled);
+  // Box meshes (thin plates), so that the pair is solved by PolyDepth.
+  SceneConfig config = test::BoxOnBoxConfig();
+  config.tool.shape.shape = ThinPlateShape{0.01, 0.01, 0.01};
+  config.objects[0].shape.shape = ThinPlateShape{0.05, 0.05, 0.01};
+  Rig rig(config, crippled);
   const WrenchOutput& out = rig.TickAt(Vector3(0, 0, 0.008));  // tool in the table
   EXPECT_TRUE(out.flags & kFlagPdInvalid);
   EXPECT_EQ(rig.renderer->counts().pd_invalid, 1);

@@ -56,36 +56,19 @@ class ConfigTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  std::string Write(std::string scene, const std::string& from = "", const std::string& to = "") {
-    if (!from.empty()) {
-      const size_t at = scene.find(from);
-      EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in the scene";
-      if (at != std::string::npos) scene.replace(at, from.size(), to);
-    }
+  std::string Write(const std::string& scene, const std::string& from = "", const std::string& to = "") {
     const fs::path path = dir_ / "scene.yaml";
-    test::WriteFile(path, scene);
+    test::WriteFile(path, test::Edited(scene, from, to));
     return path.string();
   }
 
   // Loads and builds; returns the ConfigError message ("" if it loaded).
-  static std::string Error(const std::string& path) {
-    try {
-      const SceneConfig c = LoadSceneConfig(path);
-      BuildSceneModels(c);
-    } catch (const ConfigError& e) {
-      return e.what();
-    }
-    return "";
-  }
+  static std::string Error(const std::string& path) { return test::BuildError(path); }
 
   // The error must name the file, the key and contain each of `parts`.
-  void ExpectError(const std::string& path, const std::string& key,
-                   std::initializer_list<std::string> parts) {
-    const std::string message = Error(path);
-    ASSERT_FALSE(message.empty()) << "expected an error for " << key;
-    EXPECT_NE(message.find(path), std::string::npos) << message;
-    EXPECT_NE(message.find(key + ":"), std::string::npos) << message;
-    for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
+  static void ExpectError(const std::string& path, const std::string& key,
+                          std::initializer_list<std::string> parts) {
+    test::ExpectConfigError(path, key, parts);
   }
 
   fs::path dir_;
@@ -105,7 +88,7 @@ TEST_F(ConfigTest, ValidSceneLoadsWithDefaults) {
   EXPECT_TRUE(c.objects[0].X_WS.translation().isApprox(Vector3(0, 0, -0.01)));
   EXPECT_TRUE(c.warnings.empty());
   const SceneModels m = BuildSceneModels(c);
-  EXPECT_EQ(m.tool->mesh().num_triangles(), 12);
+  EXPECT_EQ(m.tool->kind(), pd::ShapeKind::kBox);  // the exact primitive
 }
 
 TEST_F(ConfigTest, MissingKeysAreNamed) {
@@ -210,7 +193,8 @@ TEST_F(ConfigTest, MeshFilesLoadRelativeToTheConfigFile) {
       kScene, "shape: {type: box, half_extents: [0.01, 0.01, 0.01]}",
       "shape: {type: mesh, file: meshes/cube.obj, scale: 0.001}"));
   const SceneModels m = BuildSceneModels(c);
-  EXPECT_EQ(m.tool->mesh().num_triangles(), 12);
+  ASSERT_EQ(m.tool->kind(), pd::ShapeKind::kMesh);
+  EXPECT_EQ(m.tool->model()->mesh().num_triangles(), 12);
   EXPECT_NEAR(m.tool->radius(), 0.005 * std::sqrt(3.0), 1e-9);
   // A broken mesh file is named too.
   test::WriteFile(dir_ / "meshes/broken.obj", "this is not an obj file\n");
@@ -250,10 +234,13 @@ TEST(ShippedConfigs, EveryConfigLoadsAndBuilds) {
     EXPECT_TRUE(c.warnings.empty()) << c.warnings.front();
     const SceneModels m = BuildSceneModels(c);
     EXPECT_FALSE(m.objects.empty());
-    int triangles = m.tool->mesh().num_triangles();
+    auto triangles_of = [](const pd::Geometry& g) {
+      return g.model() ? g.model()->mesh().num_triangles() : 0;  // primitives: none
+    };
+    int triangles = triangles_of(*m.tool);
     for (const SceneObject& o : m.objects) {
-      EXPECT_TRUE(o.model->closed()) << o.name;
-      triangles += o.model->mesh().num_triangles();
+      if (o.geometry->model()) EXPECT_TRUE(o.geometry->model()->closed()) << o.name;
+      triangles += triangles_of(*o.geometry);
     }
     EXPECT_LE(triangles, 5000);  // modest, for the 1 kHz loop
     ++scenes;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include "haptics_test_util.h"
 
 namespace haptics {
@@ -15,20 +17,17 @@ struct Fixture {
   SceneConfig config = test::BoxOnBoxConfig();
   SceneModels models;
   std::unique_ptr<PenaltyContact> contact;
-  explicit Fixture(const pd::PolyDepthOptions& options = {}) {
+  explicit Fixture(const pd::PolyDepthOptions& options = {},
+                   const std::function<void(SceneConfig&)>& edit = nullptr) {
+    if (edit) edit(config);
     config.contact.stiffness = kK;
     config.contact.damping = kB;
     models = BuildSceneModels(config);
-    contact = std::make_unique<PenaltyContact>(models.tool, models.objects, config.contact, options);
+    contact = std::make_unique<PenaltyContact>(models, config.contact, options);
   }
 };
 
-RigidState ToolAt(const Vector3& p_WT, const Matrix3& R_WT = Matrix3::Identity()) {
-  RigidState s;
-  s.X_W.translation() = p_WT;
-  s.X_W.linear() = R_WT;
-  return s;
-}
+using test::ToolAt;
 
 TEST(PenaltyContact, BoxPressedIntoBoxPushesStraightOutByStiffnessTimesDepth) {
   Fixture f;
@@ -81,7 +80,7 @@ TEST(PenaltyContact, OffCentreContactTurnsTheToolWithTheRightSignAndMagnitude) {
       Quaternion::FromTwoVectors(Vector3(1, 1, 1), Vector3(0, 0, -1)).toRotationMatrix();
   config.tool.X_TG.translation() = Vector3(0.03, 0, 0);
   const SceneModels models = BuildSceneModels(config);
-  PenaltyContact contact(models.tool, models.objects, config.contact);
+  PenaltyContact contact(models, config.contact);
   const double corner = std::sqrt(3.0) * h;  // corner below the cube centre
   for (double depth : {0.001, 0.003}) {
     const Vector3 p_WT(-0.01, 0.005, corner - depth);
@@ -99,7 +98,7 @@ TEST(PenaltyContact, OffCentreContactTurnsTheToolWithTheRightSignAndMagnitude) {
   // Mirrored: the corner on the other side turns the other way.
   config.tool.X_TG.translation() = Vector3(-0.03, 0, 0);
   const SceneModels mirrored = BuildSceneModels(config);
-  PenaltyContact contact2(mirrored.tool, mirrored.objects, config.contact);
+  PenaltyContact contact2(mirrored, config.contact);
   const ContactSummary& c = contact2.Compute(ToolAt(Vector3(0.01, 0.005, corner - 0.002)));
   EXPECT_NEAR(c.wrench.w0.tau_W.y(), 0.03 * kK * 0.002, 1e-4 * 0.03 * kK * 0.002);
  }
@@ -114,7 +113,7 @@ TEST(PenaltyContact, FlatFaceOffCentreActsAtTheFaceCentre) {
   config.contact.damping = kB;
   config.tool.X_TG.translation() = Vector3(0.03, 0, 0);
   const SceneModels models = BuildSceneModels(config);
-  PenaltyContact contact(models.tool, models.objects, config.contact);
+  PenaltyContact contact(models, config.contact);
   for (double depth : {0.001, 0.004}) {
     const ContactSummary& c = contact.Compute(ToolAt(Vector3(-0.02, 0.004, 0.01 - depth)));
     ASSERT_TRUE(contact.last_result(0).valid);
@@ -135,7 +134,7 @@ TEST(PenaltyContact, FlatFaceTorqueIsContinuousInTilt) {
     config.contact.stiffness = kK;
     config.contact.torque_model = model;
     const SceneModels models = BuildSceneModels(config);
-    PenaltyContact contact(models.tool, models.objects, config.contact);
+    PenaltyContact contact(models, config.contact);
     const Matrix3 R = Eigen::AngleAxisd(angle, Vector3::UnitX()).toRotationMatrix();
     return Vector3(contact.Compute(ToolAt(Vector3(0.003, -0.002, 0.01 - depth), R)).wrench.w0.tau_W);
   };
@@ -154,12 +153,13 @@ TEST(PenaltyContact, FarObjectsAreNotQueried) {
   Fixture f;
   const int64_t before = f.contact->query_count();
   const ContactSummary& far = f.contact->Compute(ToolAt(Vector3(0.0, 0.0, 0.5)));
-  EXPECT_EQ(far.num_queried, 0);
+  EXPECT_EQ(far.num_candidates, 0);
+  EXPECT_EQ(far.num_culled, 1);
   EXPECT_EQ(f.contact->query_count(), before);
   EXPECT_FALSE(f.contact->last_result(0).in_collision);
   // Close but not touching: queried, no force.
   const ContactSummary& near = f.contact->Compute(ToolAt(Vector3(0.0, 0.0, 0.0105)));
-  EXPECT_EQ(near.num_queried, 1);
+  EXPECT_EQ(near.num_candidates, 1);
   EXPECT_EQ(near.num_in_contact, 0);
   EXPECT_EQ(near.wrench.w0.f_W, Vector3::Zero());
 }
@@ -171,7 +171,12 @@ TEST(PenaltyContact, UnverifiedPdIsDroppedAndCounted) {
   crippled.use_centroid = false;
   crippled.num_random = 0;
   crippled.num_sampling_directions = 0;
-  Fixture f(crippled);
+  // Box meshes (thin plates), so that the pair is solved by PolyDepth.
+  Fixture f(crippled, [](SceneConfig& c) {
+    c.tool.shape.shape = ThinPlateShape{0.01, 0.01, 0.01};
+    c.objects[0].shape.shape = ThinPlateShape{0.05, 0.05, 0.01};
+  });
+  ASSERT_EQ(f.contact->solver(0).method(), pd::PdMethod::kPolyDepth);
   const ContactSummary& c = f.contact->Compute(ToolAt(Vector3(0, 0, 0.008)));
   EXPECT_TRUE(f.contact->last_result(0).in_collision);
   EXPECT_FALSE(f.contact->last_result(0).valid);
