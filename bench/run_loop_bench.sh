@@ -37,6 +37,7 @@ SCENES=(
   "bunny_75k            bench/scenes/bunny_75k.yaml            bench/scenes/bunny_75k.params.yaml"
   "elephant_bunny_164k  bench/scenes/elephant_bunny_164k.yaml  bench/scenes/elephant_bunny_164k.params.yaml"
   "box_on_box           config/box_on_box.yaml                 probes/trajectories/box_on_box.csv"
+  "box_on_box_no_phase_lock bench/scenes/box_on_box_no_phase_lock.yaml probes/trajectories/box_on_box.csv"
   "spoon_in_cup         config/spoon_in_cup.yaml               probes/trajectories/spoon_in_cup.csv"
   "peg_in_hole          config/peg_in_hole.yaml                probes/trajectories/peg_in_hole.csv"
   "primitives_only      config/primitives_only.yaml            probes/trajectories/primitives_only.csv"

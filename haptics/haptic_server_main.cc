@@ -66,7 +66,7 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 "poses_rejected=%lld poses_dropped=%lld messages_malformed=%lld "
                 "poses_out_of_order=%lld pose_seq_skipped=%lld pose_time_backwards=%lld "
                 "force_saturations=%lld rate_limited=%lld watchdog_trips=%lld pd_invalid=%lld "
-                "nonfinite_outputs=%lld realtime=%d",
+                "nonfinite_outputs=%lld realtime=%d pose_wait_p50_us=%.1f pose_wait_p99_us=%.1f",
                 static_cast<long long>(s.ticks), s.elapsed_s, s.achieved_rate_hz,
                 static_cast<long long>(s.deadline_misses), s.jitter_p99_us, s.compute_p99_us,
                 s.compute_max_us, static_cast<long long>(rx.received),
@@ -78,7 +78,8 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 static_cast<long long>(s.renderer.limiter.rate_limited),
                 static_cast<long long>(s.renderer.watchdog_trips),
                 static_cast<long long>(s.renderer.pd_invalid),
-                static_cast<long long>(s.renderer.limiter.nonfinite), s.realtime ? 1 : 0);
+                static_cast<long long>(s.renderer.limiter.nonfinite), s.realtime ? 1 : 0,
+                s.pose_wait_p50_us, s.pose_wait_p99_us);
   return line;
 }
 
@@ -135,6 +136,8 @@ int Serve(const Options& opt, sigset_t* signals) {
   loop_options.cpu = config.servo.cpu;
   loop_options.realtime_priority = config.servo.realtime_priority;
   loop_options.status_rate_hz = config.servo.status_rate_hz;
+  loop_options.phase_lock.enabled = config.servo.phase_lock;
+  loop_options.phase_lock.target_us = config.servo.phase_lock_target_us;
   std::unique_ptr<haptics::TickLog> tick_log;
   if (!opt.timing_log.empty()) {
     // Fail now, not after the run, if the file cannot be written.

@@ -163,6 +163,10 @@ ServoConfig ReadServo(const YamlMap& m) {
   s.cpu = m.IntegerOr("cpu", -1, -1, 1023);
   s.realtime_priority = m.IntegerOr("realtime_priority", 80, 0, 99);
   s.status_rate_hz = m.NumberOr("status_rate_hz", 10.0, Range::Closed(0.1, 100.0, "Hz"));
+  if (m.Has("phase_lock")) s.phase_lock = m.Choice("phase_lock", {"true", "false"}) == "true";
+  // Below half a period, so a pose arriving on time never waits a whole one.
+  s.phase_lock_target_us = m.NumberOr("phase_lock_target_us", 150.0,
+                                      Range::Closed(0.0, 0.5e6 / s.rate_hz, "us"));
   m.WarnUnknownKeys();
   return s;
 }

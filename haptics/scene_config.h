@@ -113,6 +113,10 @@ struct ServoConfig {
   int cpu = -1;                      // pin the loop thread to this CPU; -1: no pinning
   int realtime_priority = 80;        // SCHED_FIFO priority; 0: do not ask
   double status_rate_hz = 10.0;
+  // Tick phase follows pose arrival (haptics/phase_lock.h): the newest pose
+  // waits about phase_lock_target_us (us) for the tick instead of 0..1 period.
+  bool phase_lock = true;
+  double phase_lock_target_us = 150.0;
 };
 
 struct LcmConfig {

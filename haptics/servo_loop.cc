@@ -35,7 +35,8 @@ size_t WindowTicks(const ServoLoopOptions& o) {
 ServoLoop::ServoLoop(HapticRenderer* renderer, LatestValue<PoseSample>* poses, WrenchSink* sink,
                      const ServoLoopOptions& options)
     : renderer_(renderer), poses_(poses), sink_(sink), options_(options),
-      window_jitter_us_(WindowTicks(options)), window_compute_us_(WindowTicks(options)) {}
+      window_jitter_us_(WindowTicks(options)), window_compute_us_(WindowTicks(options)),
+      phase_lock_(options.phase_lock, 1e6 / options.rate_hz) {}
 
 ServoLoop::~ServoLoop() { Stop(); }
 
@@ -92,15 +93,24 @@ void ServoLoop::Run() {
     prev_wake = wake;
 
     const double t = static_cast<double>(next - start_ns_) * 1e-9;
-    const WrenchOutput& out = renderer_->Tick(t, poses_->TakeNewest());
+    const PoseSample* pose = poses_->TakeNewest();
+    const WrenchOutput& out = renderer_->Tick(t, pose);
     sink_->Publish(out);
+    // Follow the device's clock: move the schedule toward a fixed wait after
+    // the pose's receipt (the rate stays nominal; see phase_lock.h).
+    int64_t phase_shift_ns = 0;
+    if (pose != nullptr && pose->receive_time_ns > 0 && pose->receive_time_ns <= wake) {
+      const double wait_us = static_cast<double>(wake - pose->receive_time_ns) * 1e-3;
+      pose_wait_hist_.Add(wait_us);
+      phase_shift_ns = std::llround(phase_lock_.Update(wait_us) * 1e3);
+    }
 
     const int64_t end = NowNs();
     const double compute_us = static_cast<double>(end - wake) * 1e-3;
     window_compute_us_.Add(compute_us);
     compute_hist_.Add(compute_us);
     ++ticks_;
-    next += period_ns;  // this tick's deadline: the next tick's start
+    next += period_ns + phase_shift_ns;  // this tick's deadline: the next tick's start
     const bool missed = end > next;
     if (missed) {
       ++misses_;
@@ -147,6 +157,9 @@ LoopSummary ServoLoop::Summary() const {
   s.compute_p50_us = compute_hist_.Percentile(0.50);
   s.compute_p99_us = compute_hist_.Percentile(0.99);
   s.compute_max_us = compute_hist_.max();
+  s.poses_taken = pose_wait_hist_.count();
+  s.pose_wait_p50_us = pose_wait_hist_.Percentile(0.50);
+  s.pose_wait_p99_us = pose_wait_hist_.Percentile(0.99);
   s.realtime = realtime_;
   s.pinned = pinned_;
   s.renderer = renderer_->counts();

@@ -19,6 +19,7 @@
 
 #include "haptics/haptic_renderer.h"
 #include "haptics/latest_value.h"
+#include "haptics/phase_lock.h"
 #include "haptics/pose_sample.h"
 #include "haptics/timing_stats.h"
 #include "haptics/wrench_output.h"
@@ -39,6 +40,7 @@ struct ServoLoopOptions {
   int realtime_priority = 80;   // 0: do not ask for SCHED_FIFO
   double status_rate_hz = 10.0;
   TickLog* tick_log = nullptr;  // optional: one TickRecord per tick (not owned)
+  PhaseLockOptions phase_lock;  // tick phase follows pose arrival (phase_lock.h)
 };
 
 // One status window (about 1 / status_rate_hz of ticks). Times in us.
@@ -64,6 +66,10 @@ struct LoopSummary {
   double compute_p50_us = 0.0, compute_p99_us = 0.0, compute_max_us = 0.0;
   bool realtime = false;
   bool pinned = false;
+  // Receipt-to-tick wait of the poses the ticks took (us): the part of the
+  // pose-to-wrench latency the loop adds (phase_lock.h keeps it near its target).
+  int64_t poses_taken = 0;
+  double pose_wait_p50_us = 0.0, pose_wait_p99_us = 0.0;
   RendererCounts renderer;
 };
 
@@ -100,7 +106,8 @@ class ServoLoop {
 
   // Loop-thread state (read by others only after join).
   SampleWindow window_jitter_us_, window_compute_us_;
-  DurationHistogram jitter_hist_, compute_hist_;
+  DurationHistogram jitter_hist_, compute_hist_, pose_wait_hist_;
+  PhaseLock phase_lock_;
   int64_t ticks_ = 0;
   int64_t misses_ = 0;
   int64_t start_ns_ = 0, end_ns_ = 0;

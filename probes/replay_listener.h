@@ -41,6 +41,11 @@ class ReplayListener {
     a.flags = msg.flags;
     server_seen_ = true;
     std::lock_guard<std::mutex> lock(mutex_);
+    // The server numbers its ticks: a jump in wrench seq is wrenches lost in
+    // transport (e.g. a full socket buffer), whose poses may look unanswered.
+    if (last_wrench_seq_ >= 0 && msg.seq > last_wrench_seq_ + 1)
+      wrenches_missed_ += msg.seq - last_wrench_seq_ - 1;
+    if (msg.seq > last_wrench_seq_) last_wrench_seq_ = msg.seq;
     if (matcher_->Match(a, receive_us) == SeqMatcher::Outcome::kFirstAnswer) ++first_answers_;
   }
 
@@ -54,6 +59,11 @@ class ReplayListener {
   std::mutex& mutex() { return mutex_; }
   bool server_seen() const { return server_seen_.load(); }
   int64_t first_answers() const { return first_answers_.load(); }
+  // Wrenches the server published (by its tick seq) that never arrived here.
+  int64_t wrenches_missed() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return wrenches_missed_;
+  }
   std::optional<haptics_msgs::server_status_t> last_status() {
     std::lock_guard<std::mutex> lock(mutex_);
     return last_status_;
@@ -77,6 +87,8 @@ class ReplayListener {
 
   SeqMatcher* matcher_;
   std::mutex mutex_;
+  int64_t last_wrench_seq_ = -1;
+  int64_t wrenches_missed_ = 0;
   std::atomic<bool> server_seen_{false};
   std::atomic<int64_t> first_answers_{0};
   std::optional<haptics_msgs::server_status_t> last_status_;

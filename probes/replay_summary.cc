@@ -134,6 +134,7 @@ nlohmann::ordered_json ToJson(const ReplaySummary& s) {
   j["superseded"] = s.superseded;
   j["lost"] = s.lost;
   j["longest_unanswered_run"] = s.longest_unanswered_run;
+  j["wrenches_missed"] = s.wrenches_missed;
   j["max_superseded_fraction"] = s.max_superseded_fraction;
   j["repeat_answers"] = s.repeat_answers;
   j["no_pose_answers"] = s.no_pose_answers;

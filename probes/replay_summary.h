@@ -38,6 +38,7 @@ struct ReplaySummary {
   int64_t repeat_answers = 0;
   int64_t no_pose_answers = 0;
   int64_t foreign_answers = 0;
+  int64_t wrenches_missed = 0;       // gaps in the server's wrench seq (lost in transport)
   LatencySummary latency_us;
   double max_force_N = 0.0;          // max |f| over finite answers
   double max_torque_Nm = 0.0;        // max |tau| over finite answers

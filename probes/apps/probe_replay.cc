@@ -199,6 +199,7 @@ int main(int argc, char** argv) {
   summary.repeat_answers = matcher.repeat_answers();
   summary.no_pose_answers = matcher.no_pose_answers();
   summary.foreign_answers = matcher.foreign_answers();
+  summary.wrenches_missed = listener.wrenches_missed();
   summary.max_send_lateness_us = 1e-3 * static_cast<double>(worst_late_ns);
   summary.last_status = listener.last_status();
 

@@ -257,5 +257,20 @@ TEST(ShippedConfigs, EveryConfigLoadsAndBuilds) {
   EXPECT_GE(devices, 2);
 }
 
+TEST_F(ConfigTest, PhaseLockDefaultsOnAndIsValidated) {
+  const SceneConfig c = LoadSceneConfig(Write(kScene));
+  EXPECT_TRUE(c.servo.phase_lock);
+  EXPECT_DOUBLE_EQ(c.servo.phase_lock_target_us, 150.0);
+  const SceneConfig off = LoadSceneConfig(
+      Write(kScene, "  rate_hz: 1000.0\n", "  rate_hz: 1000.0\n  phase_lock: false\n  phase_lock_target_us: 80\n"));
+  EXPECT_FALSE(off.servo.phase_lock);
+  EXPECT_DOUBLE_EQ(off.servo.phase_lock_target_us, 80.0);
+  // More than half a period would let an on-time pose wait a whole one.
+  ExpectError(Write(kScene, "  rate_hz: 1000.0\n", "  rate_hz: 1000.0\n  phase_lock_target_us: 700\n"),
+              "servo.phase_lock_target_us", {"700"});
+  ExpectError(Write(kScene, "  rate_hz: 1000.0\n", "  rate_hz: 1000.0\n  phase_lock: maybe\n"),
+              "servo.phase_lock", {"maybe"});
+}
+
 }  // namespace
 }  // namespace haptics

@@ -24,6 +24,20 @@ TEST(ReplayListener, StatusMarksServerSeenAndIsKept) {
   EXPECT_EQ(listener.last_status()->messages_malformed, 3);
 }
 
+TEST(ReplayListener, GapsInTheServerTickSeqAreCountedAsLostWrenches) {
+  SeqMatcher matcher(0, 1);
+  ReplayListener listener(&matcher);
+  haptics_msgs::wrench_t w{};
+  w.pose_seq = -1;
+  for (int64_t seq : {10, 11, 14, 15, 13 /* late, out of order */, 20}) {
+    w.seq = seq;
+    listener.HandleWrench(w, 1000 + seq);
+  }
+  // 12, 13 missing after 11 (13 arrives late but is still counted once as a
+  // gap: an upper bound is what the e2e accounting needs) and 16..19.
+  EXPECT_EQ(listener.wrenches_missed(), 2 + 4);
+}
+
 TEST(ReplayListener, WrenchIsMatchedToItsPose) {
   SeqMatcher matcher(0, 2);
   ReplayListener listener(&matcher);
