@@ -13,7 +13,10 @@ rm -rf "$work" && mkdir -p "$work"
 "$bin/haptic_server" --config "$ROOT/config/box_on_box.yaml" >"$work/server.out" 2>"$work/server.err" &
 server=$!
 set +e
-"$bin/bad_pose_check" --phase-seconds "$phase" | tee "$work/check.out"
+# PD_E2E_TIMING_RELAXED (scripts/test_sanitize.sh): real-time expectations off.
+relaxed=()
+[[ -n "${PD_E2E_TIMING_RELAXED:-}" ]] && relaxed=(--allow-watchdog-trips)
+"$bin/bad_pose_check" --phase-seconds "$phase" "${relaxed[@]}" | tee "$work/check.out"
 check=${PIPESTATUS[0]}
 alive=0
 kill -0 "$server" 2>/dev/null && alive=1

@@ -107,6 +107,9 @@ int main(int argc, char** argv) {
   Limits limits;
   app.add_option("--lcm-url", url, "LCM URL (default: LCM's default)");
   app.add_option("--phase-seconds", phase_s, "length of each phase (s)")->capture_default_str();
+  bool allow_watchdog = false;
+  app.add_flag("--allow-watchdog-trips", allow_watchdog,
+               "do not fail on watchdog trips (sanitizer builds: the loop is too slow for real time)");
   app.add_option("--wait-server", wait_s, "wait this long (s) for the server's first status")->capture_default_str();
   app.add_option("--press-z", press_z, "handle height while pressing (m)")->capture_default_str();
   app.add_option("--max-force", limits.max_force, "device force limit (N)")->capture_default_str();
@@ -311,7 +314,7 @@ int main(int argc, char** argv) {
   require(st.pose_time_backwards >= back, "pose_time_backwards does not count the clock going back");
   require(st.poses_dropped - dropped_before >= 1000, "the 10x burst did not supersede poses");
   require(st.messages_malformed >= malformed, "messages_malformed does not count the malformed messages");
-  require(st.watchdog_trips == 0, "the watchdog tripped although good poses kept coming");
+  require(allow_watchdog || st.watchdog_trips == 0, "the watchdog tripped although good poses kept coming");
   require(end.last_force_z > 0.5, "no longer pressing on the table at the end");
   std::printf("bad_pose_check: %s\n", failures == 0 ? "PASS" : "FAIL");
   return finish(failures == 0 ? 0 : 1);

@@ -235,6 +235,7 @@ int main(int argc, char** argv) {
     std::cerr << "usage: check_contact RESULT.csv EXPECT.yaml\n";
     return 2;
   }
+  const bool timing_relaxed = std::getenv("PD_E2E_TIMING_RELAXED") != nullptr;
   std::vector<Row> rows = ReadResults(argv[1]);
   YAML::Node spec;
   try {
@@ -328,8 +329,13 @@ int main(int argc, char** argv) {
                 rule.name.c_str(), rule_ok ? "PASS" : "FAIL", selected, rule.min_rows,
                 100 * fraction, 100 * rule.min_fraction, lo, hi);
     if (first_bad_line > 0) std::printf(", first failing row on line %d", first_bad_line);
+    // Contact rules assume the loop keeps real time (the tool follows the
+    // device). Sanitizer builds of the PolyDepth scenes cannot, so
+    // scripts/test_sanitize.sh reports these rules without enforcing them;
+    // the finite/limits rule above is always enforced.
+    if (!rule_ok && timing_relaxed) std::printf(" (not enforced: PD_E2E_TIMING_RELAXED)");
     std::printf("\n");
-    ok = ok && rule_ok;
+    ok = ok && (rule_ok || timing_relaxed);
   }
   std::printf("check_contact: %s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
