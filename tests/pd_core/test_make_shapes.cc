@@ -10,33 +10,13 @@
 
 #include "pd_core/mesh_topology.h"
 #include "pd_core/triangle_geometry.h"
+#include "tests/mesh_checks.h"
 
 namespace pd {
 namespace {
 
-// Volume enclosed by a closed mesh; positive when triangles are CCW outside.
-double SignedVolume(const TriangleMesh& mesh) {
-  double six_v = 0.0;
-  for (const auto& t : mesh.triangles) {
-    six_v += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-  }
-  return six_v / 6.0;
-}
-
-// Each directed edge used once and its reverse used once: the two faces of
-// every edge agree on orientation (which the undirected topology cannot see).
-bool ConsistentlyOriented(const TriangleMesh& mesh) {
-  std::map<std::pair<int, int>, int> directed;
-  for (const auto& t : mesh.triangles) {
-    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
-  }
-  for (const auto& [edge, count] : directed) {
-    if (count != 1) return false;
-    auto reverse = directed.find({edge.second, edge.first});
-    if (reverse == directed.end() || reverse->second != 1) return false;
-  }
-  return true;
-}
+using test::ConsistentlyOriented;
+using test::SignedVolume;
 
 // Every check a generated solid must pass.
 void ExpectClosedOutward(const TriangleMesh& mesh) {
