@@ -36,10 +36,13 @@ pd::TriangleMesh Procedural(const std::string& name) {
 ModelCache::ModelCache(std::string mesh_dir, int build_repeats)
     : mesh_dir_(std::move(mesh_dir)), build_repeats_(std::max(1, build_repeats)) {}
 
-std::shared_ptr<const ModelInfo> ModelCache::Get(const std::string& name, std::string* why) {
-  if (auto it = models_.find(name); it != models_.end()) return it->second;
+std::shared_ptr<const ModelInfo> ModelCache::Get(const std::string& name, std::string* why,
+                                                 double radius) {
+  const std::string key =
+      radius == kModelRadius ? name : name + "@" + std::to_string(radius).substr(0, 6) + "m";
+  if (auto it = models_.find(key); it != models_.end()) return it->second;
   auto info = std::make_shared<ModelInfo>();
-  info->name = name;
+  info->name = key;
   pd::TriangleMesh mesh;
   if (name.rfind("procedural:", 0) == 0) {
     info->source = "procedural";
@@ -63,7 +66,7 @@ std::shared_ptr<const ModelInfo> ModelCache::Get(const std::string& name, std::s
   const pd::MeshBounds bounds = pd::ComputeBounds(mesh);
   double r = 0.0;
   for (const pd::Vector3& v : mesh.vertices) r = std::max(r, (v - bounds.center()).norm());
-  info->scale = kModelRadius / r;
+  info->scale = radius / r;
   for (pd::Vector3& v : mesh.vertices) v *= info->scale;
   info->triangles = mesh.num_triangles();
 
@@ -78,7 +81,7 @@ std::shared_ptr<const ModelInfo> ModelCache::Get(const std::string& name, std::s
   info->build_ms = Percentile(build_ms, 50);
   info->memory_bytes = info->model->MemoryBytes();
   info->closed = info->model->closed();
-  models_[name] = info;
+  models_[key] = info;
   return info;
 }
 

@@ -45,8 +45,10 @@ std::vector<PairSpec> DefaultPairs();
 class ModelCache {
  public:
   ModelCache(std::string mesh_dir, int build_repeats);
-  // nullptr and *why set when the file is missing or unreadable.
-  std::shared_ptr<const ModelInfo> Get(const std::string& name, std::string* why);
+  // nullptr and *why set when the file is missing or unreadable. `radius`:
+  // the bounding-sphere radius the model is scaled to (m).
+  std::shared_ptr<const ModelInfo> Get(const std::string& name, std::string* why,
+                                       double radius = kModelRadius);
   std::vector<std::shared_ptr<const ModelInfo>> All() const;
 
  private:

@@ -12,6 +12,7 @@
 
 #include "bench/bench_results.h"
 #include "bench/csv_writer.h"
+#include "bench/haptic_bench.h"
 #include "bench/knob_sweep.h"
 #include "bench/pair_bench.h"
 #include "bench/plots.h"
@@ -49,6 +50,8 @@ RunSettings MakeSettings(bool quick) {
   s.fcl_cases = quick ? 20 : 100;
   s.sweep_cases = quick ? 8 : 60;
   s.fcl_max_contacts = 100000;
+  s.haptic_steps = quick ? 1000 : 3000;
+  s.haptic_ref = quick ? 4 : 16;
   s.seed = 20240611;
   return s;
 }
@@ -81,6 +84,20 @@ void PrintHeadlines(const BenchRun& run) {
     }
 }
 
+void PrintHapticHeadlines(const std::vector<HapticPairResult>& runs) {
+  std::printf("\n%-18s %6s %5s %9s %9s %9s %9s %8s %8s %7s %6s %5s %5s %8s %8s %8s\n", "haptic pair",
+              "poses", "coll", "med_us", "p99_us", "p99.9_us", "max_us", "fcl_med", "fcl_p99",
+              "ratio", "r_p99", "cold", "inval", "boxes", "tris", "mean|e|");
+  for (const HapticPairResult& r : runs) {
+    const HapticSummary m = SummarizeHaptic(r);
+    std::printf("%-18s %6d %5d %9.1f %9.1f %9.1f %9.1f %8.1f %8.1f %7.2f %6.2f %5d %5d %8.0f %8.0f %7.3f%%\n",
+                r.spec.name.c_str(), m.steps, m.colliding, m.pd_us.median, m.pd_us.p99, m.p999_us,
+                m.pd_us.max, m.fcl_us.median, m.fcl_us.p99, m.median_ratio, m.p99_ratio,
+                m.cold_restarts, m.invalid + m.not_free_beyond, m.mean_box_tests,
+                m.mean_triangle_tests, 100 * m.abs_error.mean);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,6 +109,11 @@ int main(int argc, char** argv) {
   uint64_t seed = 0;
   int ref_threads = std::max(1u, std::thread::hardware_concurrency());
   app.add_flag("--quick", quick, "fewer pairs, cases and reference directions (< 2 min)");
+  int haptic_ref = -1;
+  app.add_option("--haptic-ref", haptic_ref, "reference PDs per haptic path (quick 4, full 16)")
+      ->check(CLI::Range(0, 100000));
+  bool haptic_only = false;
+  app.add_flag("--haptic-only", haptic_only, "run only the haptic scenario (mesh tool sliding over a mesh object)");
   // TakeLast: run_pd_bench.sh passes --mesh-dir and the user may override it.
   app.add_option("--out", out_dir, "output directory")
       ->capture_default_str()
@@ -116,6 +138,7 @@ int main(int argc, char** argv) {
   run.settings = MakeSettings(quick);
   RunSettings& st = run.settings;
   if (seed != 0) st.seed = seed;
+  if (haptic_ref >= 0) st.haptic_ref = haptic_ref;
   st.ref_threads = ref_threads;
   if (ref_directions > 0) st.ref_directions = ref_directions;
   st.mesh_dir = mesh_dir.empty() ? FindMeshDir() : mesh_dir;
@@ -129,8 +152,25 @@ int main(int argc, char** argv) {
   std::cerr << "bench_pd: " << (quick ? "quick" : "full") << " run, meshes from " << st.mesh_dir
             << ", output to " << out_dir << "\n";
 
-  // Models: the pairs', plus ~100k-triangle ones for the precomputation target.
   ModelCache cache(st.mesh_dir, quick ? 1 : 3);
+  std::vector<HapticPairResult> haptic;
+  for (const HapticPairSpec& spec : DefaultHapticPairs()) {
+    if (quick && !spec.in_quick) continue;
+    std::string why;
+    auto tool = cache.Get(spec.tool, &why, kHapticToolRadius);
+    auto object = tool ? cache.Get(spec.object, &why, kHapticObjectRadius) : nullptr;
+    if (!tool || !object) {
+      std::cerr << "bench_pd: skipping haptic pair " << spec.name << ": " << why << "\n";
+      run.skipped.push_back(spec.name + ": " + why);
+      continue;
+    }
+    haptic.push_back(RunHapticPair({spec.name, tool, object}, spec, st));
+  }
+  PrintHapticHeadlines(haptic);
+  const std::string haptic_csv = WriteHapticCsv(haptic, out_dir);
+  if (haptic_only) return 0;
+
+  // Models: the pairs', plus ~100k-triangle ones for the precomputation target.
   std::vector<BenchPair> pairs;
   const std::set<std::string> wanted(only_pairs.begin(), only_pairs.end());
   for (const std::string& name : wanted) {

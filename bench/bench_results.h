@@ -99,6 +99,8 @@ struct RunSettings {
   int fcl_cases = 0;        // per scenario, on top of the reference subset
   int sweep_cases = 0;      // per scenario, on top of the reference subset
   int fcl_max_contacts = 0;
+  int haptic_steps = 0;     // poses per haptic path (1 ms apart)
+  int haptic_ref = 0;       // reference PDs per haptic path
   uint64_t seed = 0;
   std::string mesh_dir, out_dir;
 };

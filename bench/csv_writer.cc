@@ -84,4 +84,24 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
   return {"pd_cases.csv", "pd_sweep.csv", "pd_models.csv"};
 }
 
+std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std::string& dir) {
+  const std::string name = "pd_haptic.csv";
+  std::ofstream f = Open(dir + "/" + name);
+  f << "pair,index,colliding,pd_in_collision,pd_valid,pd_verified_free,pd_free_beyond,"
+       "pd_converged,pd_depth_m,pd_time_us,pd_iterations,pd_contacts,pd_initializer,"
+       "pd_box_tests,pd_triangle_tests,cold_restart,fcl_collide,fcl_time_us,ref_depth_m,"
+       "pd_rel_error\n";
+  for (const HapticPairResult& r : runs)
+    for (const HapticStep& s : r.steps)
+      f << r.spec.name << ',' << s.c.index << ',' << s.c.colliding << ',' << s.pd.in_collision
+        << ',' << s.pd.valid << ',' << s.pd.verified_free << ',' << s.free_beyond << ','
+        << s.converged << ',' << Num(s.pd.depth) << ',' << Num(s.pd.time_us) << ','
+        << s.pd.iterations << ',' << s.pd.contacts << ',' << s.pd.initializer << ','
+        << Num(s.box_tests) << ',' << Num(s.triangle_tests) << ',' << s.cold_restart << ','
+        << s.fcl_collide << ',' << Num(s.fcl_time_us) << ','
+        << (s.has_ref ? Num(s.ref.depth) : "") << ','
+        << (s.has_ref ? Num(RelativeError(s.pd.depth, s.ref.depth)) : "") << '\n';
+  return name;
+}
+
 }  // namespace pd_bench

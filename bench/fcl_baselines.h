@@ -7,6 +7,8 @@
 //    separates the meshes).
 //  - Mesh-mesh contacts (BVHModel<OBBRSS>, enable_contact): the largest
 //    per-triangle-pair penetration_depth FCL reports; no global guarantee.
+//  - Boolean mesh-mesh collide (BVHModel<OBB>, first contact only): the
+//    cost yardstick for a warm PD query, not a PD at all.
 #include <memory>
 
 #include "pd_core/mesh.h"
@@ -29,6 +31,8 @@ class FclBaselines {
 
   FclAnswer ConvexHullPd(const pd::Isometry3& X_WP, const pd::Isometry3& X_WS) const;
   FclAnswer MeshContactPd(const pd::Isometry3& X_WP, const pd::Isometry3& X_WS) const;
+  // Boolean collide only (depth 0); time_us is its wall time.
+  FclAnswer Collide(const pd::Isometry3& X_WP, const pd::Isometry3& X_WS) const;
 
   int probe_hull_vertices() const;
   int scene_hull_vertices() const;

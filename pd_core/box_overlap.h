@@ -75,6 +75,15 @@ inline double BoxGapLowerBound(const ProbeBoxInS& a, const BvhNode& b,
   return gap;
 }
 
+// A lower bound on the boxes' distance (m): the larger of the bounding
+// spheres' gap and the separating-axis bound; exact only when > `enough`
+// is not needed (the axes stop once the bound exceeds it).
+inline double BoxGap(const ProbeBoxInS& a, const BvhNode& b, double enough) {
+  const double sphere_gap = (a.p_SA - b.center_M).norm() - a.half_A->norm() - b.half_B.norm();
+  if (sphere_gap > enough) return sphere_gap;
+  return std::max(sphere_gap, BoxGapLowerBound(a, b, enough));
+}
+
 // True if the boxes may come within `distance` of each other. The bounding
 // spheres of the boxes decide most far pairs for a fraction of the cost of
 // the separating axes (no rotation products).
@@ -141,8 +150,5 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
   *s_hi = hi;
   return true;
 }
-
-// Node size for choosing which side of a pair to descend.
-inline double NodeSize2(const BvhNode& n) { return n.half_B.squaredNorm(); }
 
 }  // namespace pd

@@ -21,6 +21,30 @@ Bvh::Bvh(const TriangleMesh& mesh) {
   nodes_.shrink_to_fit();
 }
 
+int Bvh::MeasureDepth(const std::vector<BvhNode>& nodes) {
+  if (nodes.empty()) return 0;
+  // Children always follow their parent (left = i + 1, right > i), so one
+  // forward pass assigns every node its level.
+  std::vector<int> level(nodes.size(), 0);
+  level[0] = 1;
+  int depth = 1;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    depth = std::max(depth, level[i]);
+    if (nodes[i].is_leaf()) continue;
+    level[i + 1] = level[i] + 1;
+    level[nodes[i].right_or_first] = level[i] + 1;
+  }
+  return depth;
+}
+
+Bvh Bvh::FromNodes(std::vector<BvhNode> nodes, std::vector<int32_t> order) {
+  Bvh bvh;
+  bvh.nodes_ = std::move(nodes);
+  bvh.order_ = std::move(order);
+  bvh.depth_ = MeasureDepth(bvh.nodes_);
+  return bvh;
+}
+
 // Top-down median split along the longest axis of the centroids' bounds:
 // O(n log n), balanced, so traversal stacks stay shallow.
 int Bvh::Build(const TriangleMesh& mesh, std::vector<Vector3>& centroids, int begin,

@@ -30,7 +30,15 @@ class Bvh {
   const std::vector<BvhNode>& nodes() const { return nodes_; }
   // Triangle indices in leaf order; a leaf holds order()[first .. first+count).
   const std::vector<int32_t>& order() const { return order_; }
+  // Levels from the root to the deepest leaf (1 for a single leaf).
   int depth() const { return depth_; }
+  // Depth measured from the node links (for BVHs read from disk, whose
+  // stored depth is not trusted).
+  static int MeasureDepth(const std::vector<BvhNode>& nodes);
+  // A BVH from given nodes (tests: hand-made, e.g. degenerate, trees). The
+  // links must satisfy what Bvh builds: left child = index + 1, right child
+  // beyond it, leaves indexing `order`.
+  static Bvh FromNodes(std::vector<BvhNode> nodes, std::vector<int32_t> order);
   bool empty() const { return nodes_.empty(); }
   size_t MemoryBytes() const {
     return nodes_.capacity() * sizeof(BvhNode) + order_.capacity() * sizeof(int32_t);
@@ -44,5 +52,8 @@ class Bvh {
   std::vector<int32_t> order_;
   int depth_ = 0;
 };
+
+// Node size for choosing which side of a node pair to descend.
+inline double NodeSize2(const BvhNode& n) { return n.half_B.squaredNorm(); }
 
 }  // namespace pd

@@ -2,44 +2,44 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "pd_core/box_overlap.h"
+#include "pd_core/bvh_pair_descent.h"
 
 namespace pd {
 
 void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, double radius) {
-  leaf_pairs_.clear();
+  entries_.clear();
   X_SP_ = pair.X_SP;
   q_center_S_ = q_center_S;
   radius_ = radius;
   probe_ = &pair.P;
   scene_ = &pair.S;
   valid_ = true;
-  const Bvh& bvh_P = pair.P.bvh();
-  const Bvh& bvh_S = pair.S.bvh();
-  if (bvh_P.empty() || bvh_S.empty()) return;
-  const auto& nodes_P = bvh_P.nodes();
-  const auto& nodes_S = bvh_S.nodes();
-  std::pair<int, int> stack[256];
-  int top = 0;
-  stack[top++] = {0, 0};
-  while (top > 0) {
-    const auto [ip, is] = stack[--top];
-    const BvhNode& a = nodes_P[ip];
-    const BvhNode& b = nodes_S[is];
-    if (!BoxesWithin(ProbeBox(a, pair.X_SP, q_center_S), b, radius)) continue;
-    if (a.is_leaf() && b.is_leaf()) {
-      leaf_pairs_.emplace_back(ip, is);
-      continue;
-    }
-    if (b.is_leaf() || (!a.is_leaf() && NodeSize2(a) >= NodeSize2(b))) {
-      stack[top++] = {a.right_or_first, is};
-      stack[top++] = {ip + 1, is};
-    } else {
-      stack[top++] = {ip, b.right_or_first};
-      stack[top++] = {ip, is + 1};
-    }
-  }
+  DescendBvhPair(
+      pair.P.bvh(), pair.S.bvh(),
+      [&](const BvhNode& a, const BvhNode& b, double* key) {
+        *key = BoxGap(ProbeBox(a, pair.X_SP, q_center_S), b, radius);
+        return *key <= radius;
+      },
+      [](double) { return true; },
+      [&](int ip, int is) {
+        const BvhNode& a = pair.P.bvh().nodes()[ip];
+        const BvhNode& b = pair.S.bvh().nodes()[is];
+        entries_.push_back({ip, is, BoxGap(ProbeBox(a, pair.X_SP, q_center_S), b, radius)});
+        return true;
+      },
+      pair.counters);
+  std::sort(entries_.begin(), entries_.end(),
+            [](const Entry& x, const Entry& y) { return x.gap < y.gap; });
+}
+
+int CandidatePairs::NearCount(double distance, double displacement) const {
+  const double limit = distance + displacement;
+  const auto it = std::upper_bound(entries_.begin(), entries_.end(), limit,
+                                   [](double v, const Entry& e) { return v < e.gap; });
+  return static_cast<int>(it - entries_.begin());
 }
 
 // Upper bound on how far any probe point moved between the build
@@ -52,6 +52,8 @@ void CandidatePairs::Motion(const ModelPair& pair, double* rotation_bound,
 }
 
 double CandidatePairs::Displacement(const ModelPair& pair, const Vector3& q_S) const {
+  if (!valid_ || probe_ != &pair.P || scene_ != &pair.S)
+    return std::numeric_limits<double>::infinity();
   double rot;
   Vector3 shift;
   Motion(pair, &rot, &shift);
@@ -77,7 +79,6 @@ double CandidatePairs::CoveredFraction(const ModelPair& pair, const Vector3& q_f
 
 bool CandidatePairs::Covers(const ModelPair& pair, const Vector3& q_a_S, const Vector3& q_b_S,
                             double extra) const {
-  if (!valid_ || probe_ != &pair.P || scene_ != &pair.S) return false;
   // |displacement| is convex along the segment: the endpoints bound it.
   return std::max(Displacement(pair, q_a_S), Displacement(pair, q_b_S)) + extra < radius_;
 }

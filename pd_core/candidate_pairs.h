@@ -1,12 +1,13 @@
 #pragma once
 // Verlet-style list of the BVH leaf pairs of a probe and a scene object that
-// lie within a distance of one configuration. While later configurations stay
-// within that distance budget (bounded by the probe's displacement: rotation
-// angle times radius plus the centre's motion), every triangle pair that can
-// touch there is in the list, so queries loop over a few dozen pairs instead
-// of descending both hierarchies. This is what makes a warm-started haptic
-// query cost microseconds: the probe moves ~1e-4 of its size per tick.
-#include <utility>
+// lie within a distance (the radius) of one configuration, each with a lower
+// bound on its boxes' gap there, sorted by that gap. A later configuration
+// whose probe points all moved by at most D (rotation angle times radius plus
+// the centre's motion) can only bring a listed pair within d if its gap is at
+// most d + D: queries walk that prefix of the list alone, a few pairs near
+// the contact instead of a descent of both hierarchies, and every pair that
+// can touch is in the list while D + d stays below the radius.
+#include <cstdint>
 #include <vector>
 
 #include "pd_core/model_pair.h"
@@ -15,11 +16,21 @@ namespace pd {
 
 class CandidatePairs {
  public:
-  CandidatePairs() { leaf_pairs_.reserve(4096); }
+  struct Entry {
+    int32_t ip, is;  // leaf node indices (probe BVH, scene BVH)
+    double gap;      // lower bound on the boxes' distance at the build configuration (m)
+  };
 
-  // Collects leaf pairs whose boxes are within `radius` (m) of each other
+  CandidatePairs() { entries_.reserve(4096); }
+
+  // Collects the leaf pairs whose boxes are within `radius` (m) of each other
   // with the probe at the pair's pose translated by q_center_S.
   void Build(const ModelPair& pair, const Vector3& q_center_S, double radius);
+
+  // Upper bound on how far any probe point is from where it was at the build
+  // configuration, for `pair`'s pose translated by q_S (m); +inf when the
+  // list is not this pair's or not valid.
+  double Displacement(const ModelPair& pair, const Vector3& q_S) const;
 
   // True if every configuration of `pair` translated by a point of the
   // segment [q_a_S, q_b_S], grown by `extra` (m), lies within the budget.
@@ -32,13 +43,16 @@ class CandidatePairs {
   double CoveredFraction(const ModelPair& pair, const Vector3& q_from_S, const Vector3& sweep_S,
                          double extra) const;
 
+  // How many leading entries can come within `distance` at configurations
+  // displaced by at most `displacement` (the rest cannot).
+  int NearCount(double distance, double displacement) const;
+
   void Invalidate() { valid_ = false; }
   bool valid() const { return valid_; }
-  // Leaf node indices (probe BVH, scene BVH).
-  const std::vector<std::pair<int, int>>& leaf_pairs() const { return leaf_pairs_; }
+  double radius() const { return radius_; }
+  const std::vector<Entry>& entries() const { return entries_; }
 
  private:
-  double Displacement(const ModelPair& pair, const Vector3& q_S) const;
   // Rotation part of the displacement bound (m) and the centre's motion.
   void Motion(const ModelPair& pair, double* rotation_bound, Vector3* center_shift_S) const;
   bool valid_ = false;
@@ -47,7 +61,7 @@ class CandidatePairs {
   double radius_ = 0.0;
   const CollisionModel* probe_ = nullptr;
   const CollisionModel* scene_ = nullptr;
-  std::vector<std::pair<int, int>> leaf_pairs_;
+  std::vector<Entry> entries_;
 };
 
 }  // namespace pd

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "pd_core/box_overlap.h"
-#include "pd_core/bvh_pair_traversal.h"
+#include "pd_core/leaf_pairs_near.h"
 #include "pd_core/triangle_geometry.h"
 
 namespace pd {
@@ -24,9 +24,14 @@ bool InEdgeNormalCone(const Vector3& n, const Vector3& edge, const Vector3& n0,
 
 }  // namespace
 
-void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double distance,
-                               std::vector<ContactConstraint>* out) {
+namespace {
+
+// Shared by both entry points; with test_intersection, stops (returning
+// false) at the first intersecting triangle pair.
+bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool test_intersection,
+              std::vector<ContactConstraint>* out, int* witness_tp, int* witness_ts) {
   out->clear();
+  bool free = true;
   const double dist2 = distance * distance;
   // A feature pair on the wrong side by more than this is not a touching pair.
   const double below = 1e-9 * pair.size();
@@ -38,12 +43,15 @@ void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double
   const auto& topo_S = pair.S.topology();
   const bool closed_P = pair.P.closed(), closed_S = pair.S.closed();
 
-  auto add = [&](const Vector3& n, double h, const Vector3& p, FeaturePairKind kind) {
+  auto add = [&](const Vector3& n, double h, const Vector3& p, FeaturePairKind kind, int f_P,
+                 int f_S) {
     ContactConstraint c;
     c.n_S = n;
     c.c = n.dot(q_S) - h;  // so n·q - c = h at this configuration
     c.p_S = p;
     c.kind = kind;
+    c.feature_P = f_P;
+    c.feature_S = f_S;
     out->push_back(c);
   };
   // Chooses the separating side of a face normal: outward for closed meshes,
@@ -52,17 +60,24 @@ void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double
     return (closed || h >= 0) ? n_out : Vector3(-n_out);
   };
 
-  const bool use_list =
-      pair.candidates && pair.candidates->Covers(pair, q_S, q_S, distance);
-  ForEachLeafPair(
-      pair, use_list,
+  const auto& tris_P = pair.P.mesh().triangles;
+  const auto& tris_S = pair.S.mesh().triangles;
+  ForEachLeafPairNear(
+      pair, q_S, q_S, distance,
       [&](const BvhNode& a, const BvhNode& b) {
         return BoxesWithin(ProbeBox(a, pair.X_SP, q_S), b, distance);
       },
-      [&](int tp, int ts) {
+      [&](int ip, int is) {
+       return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
+        if (pair.counters) ++pair.counters->triangle_tests;
         Vector3 p[3], s[3];
         pair.ProbeTriangle(tp, q_S, p);
         pair.SceneTriangle(ts, s);
+        if (test_intersection && TrianglesIntersect(p[0], p[1], p[2], s[0], s[1], s[2])) {
+          free = false;
+          if (witness_tp) *witness_tp = tp, *witness_ts = ts;
+          return false;
+        }
         const uint8_t op = own_P[tp], os = own_S[ts];
         const Vector3& nS = normals_S[ts];
         const Vector3 nP = pair.X_SP.R_SP * normals_P[tp];
@@ -73,7 +88,7 @@ void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double
               const double h0 = nS.dot(p[k] - s[0]);
               const Vector3 n = oriented(nS, h0, closed_S);
               const double h = n.dot(p[k] - s[0]);
-              if (h >= -below) add(n, h, p[k], FeaturePairKind::kVertexFace);
+              if (h >= -below) add(n, h, p[k], FeaturePairKind::kVertexFace, tris_P[tp][k], ts);
             }
           }
           if ((os & (1u << k)) && !nP.isZero()) {
@@ -82,7 +97,7 @@ void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double
               const double h0 = nP.dot(s[k] - p[0]);
               const Vector3 m = oriented(nP, h0, closed_P);
               const double h = m.dot(s[k] - p[0]);
-              if (h >= -below) add(-m, h, cp, FeaturePairKind::kFaceVertex);
+              if (h >= -below) add(-m, h, cp, FeaturePairKind::kFaceVertex, tp, tris_S[ts][k]);
             }
           }
         }
@@ -127,11 +142,74 @@ void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double
               if (plus == minus) continue;  // not a face of the Minkowski difference
               if (minus) n = -n;
             }
-            add(n, n.dot(pa - pb), pa, FeaturePairKind::kEdgeEdge);
+            add(n, n.dot(pa - pb), pa, FeaturePairKind::kEdgeEdge, topo_P.triangle_edges[tp][i],
+                topo_S.triangle_edges[ts][j]);
           }
         }
         return true;
+       });
       });
+  return free;
+}
+
+}  // namespace
+
+void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double distance,
+                               std::vector<ContactConstraint>* out) {
+  Localise(pair, q_S, distance, false, out, nullptr, nullptr);
+}
+
+bool CollectContactConstraintsIfSurfacesFree(const ModelPair& pair, const Vector3& q_S,
+                                             double distance,
+                                             std::vector<ContactConstraint>* out,
+                                             int* witness_tp, int* witness_ts) {
+  return Localise(pair, q_S, distance, true, out, witness_tp, witness_ts);
+}
+
+void RefreshContactConstraints(const ModelPair& pair, const Vector3& q_S,
+                               const std::vector<ContactConstraint>& in,
+                               std::vector<ContactConstraint>* out) {
+  out->clear();
+  const auto& V_P = pair.P.mesh().vertices;
+  const auto& V_S = pair.S.mesh().vertices;
+  const auto& T_P = pair.P.mesh().triangles;
+  const auto& T_S = pair.S.mesh().triangles;
+  for (const ContactConstraint& old : in) {
+    ContactConstraint c = old;
+    Vector3 n, a, b;  // normal and a point of each feature's plane/line, in S
+    switch (old.kind) {
+      case FeaturePairKind::kVertexFace:
+        n = pair.S.face_normals()[old.feature_S];
+        a = pair.X_SP * V_P[old.feature_P] + q_S;
+        b = V_S[T_S[old.feature_S][0]];
+        c.p_S = a;
+        break;
+      case FeaturePairKind::kFaceVertex:
+        n = -(pair.X_SP.R_SP * pair.P.face_normals()[old.feature_P]);
+        a = pair.X_SP * V_P[T_P[old.feature_P][0]] + q_S;
+        b = V_S[old.feature_S];
+        c.p_S = b;
+        break;
+      case FeaturePairKind::kEdgeEdge: {
+        const MeshEdge& e_P = pair.P.topology().edges[old.feature_P];
+        const MeshEdge& e_S = pair.S.topology().edges[old.feature_S];
+        a = pair.X_SP * V_P[e_P.v0] + q_S;
+        const Vector3 a1 = pair.X_SP * V_P[e_P.v1] + q_S;
+        b = V_S[e_S.v0];
+        n = (a1 - a).cross(V_S[e_S.v1] - b);
+        const double len = n.norm();
+        if (len <= 0.0) continue;
+        n /= len;
+        c.p_S = 0.5 * (a + a1);
+        break;
+      }
+    }
+    if (n.dot(old.n_S) < 0) n = -n;  // keep the side chosen when the pair was found
+    const double h = n.dot(a - b);
+    c.n_S = n;
+    c.c = n.dot(q_S) - h;
+    out->push_back(c);
+  }
 }
 
 }  // namespace pd

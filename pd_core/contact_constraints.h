@@ -18,12 +18,35 @@ struct ContactConstraint {
   double c = 0.0;  // the probe translation q_S must satisfy n·q >= c (m)
   Vector3 p_S;     // contact point on the probe at the configuration (m, in S)
   FeaturePairKind kind = FeaturePairKind::kVertexFace;
+  // The features: vertex-face: probe vertex, scene triangle; face-vertex:
+  // probe triangle, scene vertex; edge-edge: probe edge, scene edge (indices
+  // into each model's topology().edges).
+  int32_t feature_P = -1, feature_S = -1;
 };
 
 // Appends (after clearing) the constraints of all feature pairs closer than
 // `distance` (m) with the probe translated by q_S. The configuration is
 // expected to be collision-free (a point on or near the contact space).
 void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double distance,
+                               std::vector<ContactConstraint>* out);
+
+// Localisation fused with the surface-intersection test at the same
+// configuration (one pass over the same leaf pairs): returns false, with
+// `out` incomplete, as soon as a probe triangle intersects a scene triangle
+// (recorded in *witness if given); otherwise collects like
+// CollectContactConstraints and returns true. Containment is not tested.
+bool CollectContactConstraintsIfSurfacesFree(const ModelPair& pair, const Vector3& q_S,
+                                             double distance,
+                                             std::vector<ContactConstraint>* out,
+                                             int* witness_tp = nullptr, int* witness_ts = nullptr);
+
+// The same feature pairs as `in` (collected at an earlier pose of the pair),
+// their half-spaces re-evaluated at the pair's current pose with the probe
+// translated by q_S; each normal keeps the side it had in `in`. A prediction
+// of the contact's local model after a small motion, for warm starts: it is
+// exact for these features but may miss features that came into reach.
+void RefreshContactConstraints(const ModelPair& pair, const Vector3& q_S,
+                               const std::vector<ContactConstraint>& in,
                                std::vector<ContactConstraint>* out);
 
 }  // namespace pd

@@ -5,10 +5,23 @@
 
 namespace pd {
 
-// Any probe triangle intersecting any scene triangle, probe moved by offset_S.
-bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S);
+// A triangle pair (probe, scene) that intersected at some earlier query:
+// tested first by the next one, which then usually answers "colliding" with
+// a single triangle test (the contact moves little between haptic ticks).
+struct CollisionWitness {
+  int tp = -1, ts = -1;
+};
+
+// Any probe triangle intersecting any scene triangle, probe moved by
+// offset_S. `witness` (optional) is tried first and updated on a hit.
+bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S,
+                       CollisionWitness* witness = nullptr);
+
+// With no surface crossing: one closed solid wholly inside the other.
+bool SolidContained(const ModelPair& pair, const Vector3& offset_S);
 
 // SurfacesIntersect, or containment either way for closed meshes.
-bool InCollision(const ModelPair& pair, const Vector3& offset_S);
+bool InCollision(const ModelPair& pair, const Vector3& offset_S,
+                 CollisionWitness* witness = nullptr);
 
 }  // namespace pd

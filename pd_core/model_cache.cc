@@ -148,7 +148,7 @@ struct ModelCacheAccess {
     t.num_degenerate_triangles = r.Get<int32_t>();
     r.GetVector(&m->bvh_.nodes_);
     r.GetVector(&m->bvh_.order_);
-    m->bvh_.depth_ = r.Get<int32_t>();
+    r.Get<int32_t>();  // stored depth: measured from the links below instead
     r.GetVector(&m->face_normals_);
     m->center_M_ = r.Get<Vector3>();
     m->radius_ = r.Get<double>();
@@ -162,6 +162,8 @@ struct ModelCacheAccess {
       return nullptr;
     }
     if (!InBounds(*m, problem)) return nullptr;
+    // Traversal stacks are sized by the depth: never trust the file's.
+    m->bvh_.depth_ = Bvh::MeasureDepth(m->bvh_.nodes_);
     return m;
   }
 

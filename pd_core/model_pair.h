@@ -2,6 +2,7 @@
 // A probe model P posed in a scene model's frame S: the shared context of all
 // pair queries. Every query takes an extra translation `offset_S` of the probe
 // (expressed in S), the configuration-space point PolyDepth moves through.
+#include "pd_core/bvh_pair_descent.h"
 #include "pd_core/collision_model.h"
 #include "pd_core/relative_pose.h"
 
@@ -16,6 +17,8 @@ struct ModelPair {
   // Optional leaf-pair list of this pair (see candidate_pairs.h); queries
   // use it instead of descending the BVHs when it covers their configurations.
   const CandidatePairs* candidates = nullptr;
+  // Optional cost accounting of the queries on this pair.
+  ProximityCounters* counters = nullptr;
 
   ModelPair(const CollisionModel& probe, const CollisionModel& scene, const Isometry3& X_WP,
             const Isometry3& X_WS)

@@ -42,6 +42,12 @@ struct PenetrationResult {
   int num_contacts = 0;  // feature pairs (vertex-face, face-vertex, edge-edge) at the answer
   int iterations = 0;    // contact-space projection iterations
   Initializer initializer = Initializer::kNone;
+  // False when a work budget (PolyDepthOptions::max_work) stopped the search
+  // early: the answer is still verified free (an upper bound), just not
+  // known to be a local optimum.
+  bool converged = true;
+  int64_t box_tests = 0;       // bounding-box tests this query made (cost counter)
+  int64_t triangle_tests = 0;  // triangle-pair tests this query made
   double time_us = 0.0;  // solver wall time (microseconds)
 };
 

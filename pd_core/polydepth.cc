@@ -72,6 +72,25 @@ struct PolyDepthSolver::Impl {
   std::vector<SupportPlaneStart> support_starts;
   std::mt19937_64 rng;
   CandidatePairs candidates;  // leaf pairs near the last contact (warm start)
+  CollisionWitness witness;   // a triangle pair that intersected lately
+  ProximityCounters counters;
+  std::vector<ContactConstraint> previous_constraints;  // at the previous answer
+  // Work budget (PolyDepthOptions::max_work / max_time_us) of this query.
+  int64_t work_limit = 0;
+  double time_limit_us = 0.0;
+  std::chrono::steady_clock::time_point t_start;
+  bool stopped_early = false;
+  // True once the budget is spent and some verified answer exists.
+  bool OutOfBudget() {
+    if (best_origin == Initializer::kNone) return false;
+    if (work_limit > 0 && counters.box_tests + counters.triangle_tests >= work_limit)
+      return stopped_early = true;
+    if (time_limit_us > 0 &&
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t_start)
+                .count() >= time_limit_us)
+      return stopped_early = true;
+    return false;
+  }
   // Warm-start state, relative to the scene (so a moving scene is fine).
   bool has_previous = false;       // previous frame collided and was solved
   bool has_previous_free = false;  // previous frame was collision-free
@@ -98,6 +117,7 @@ struct PolyDepthSolver::Impl {
   s.Offer(q_c, origin);
   double norm_c = q_c.norm();
   for (int it = 0; it < opt.max_iterations; ++it) {
+    if (s.OutOfBudget()) break;
     ++s.iterations;
     // Localise the contact space at q_c and in-project toward the query.
     CollectContactConstraints(pair, q_c, contact_distance, &s.constraints);
@@ -140,6 +160,7 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
       impl_(std::make_unique<Impl>()) {
   impl_->rng.seed(options_.seed);
   impl_->constraints.reserve(1024);
+  impl_->previous_constraints.reserve(1024);
   impl_->starts.reserve(64);
   impl_->qp.unique.reserve(1024);
   impl_->qp.lambda.reserve(1024);
@@ -149,6 +170,8 @@ PolyDepthSolver::~PolyDepthSolver() = default;
 
 void PolyDepthSolver::ResetWarmStart() {
   impl_->candidates.Invalidate();
+  impl_->previous_constraints.clear();
+  impl_->witness = CollisionWitness{};
   impl_->has_previous = false;
   impl_->has_previous_free = false;
 }
@@ -157,31 +180,29 @@ void PolyDepthSolver::ResetWarmStart() {
 
 PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3& X_WS,
                                          bool coherent) {
-  const auto t_start = std::chrono::steady_clock::now();
   Impl& s = *impl_;
+  s.t_start = std::chrono::steady_clock::now();
   PenetrationResult result;
   ModelPair pair(*probe_, *scene_, X_WP, X_WS);
   pair.candidates = &s.candidates;
+  s.counters = ProximityCounters{};
+  pair.counters = &s.counters;
+  s.work_limit = options_.max_work;
+  s.time_limit_us = options_.max_time_us;
+  s.stopped_early = false;
   const double size = pair.size();
   const double margin = options_.separation_margin * size;
+  const double contact_distance = options_.contact_tol * size;
   s.iterations = 0;
   s.constraints_q_S = Vector3::Constant(1e300);
-
-  result.in_collision = InCollision(pair, Vector3::Zero());
-  if (!result.in_collision) {
-    // Remember this free pose: the next contact starts from it.
-    s.has_previous = false;
-    s.has_previous_free = true;
-    s.previous_X_SP = pair.X_SP;
+  auto finish = [&] {
+    result.box_tests = s.counters.box_tests;
+    result.triangle_tests = s.counters.triangle_tests;
     result.time_us = std::chrono::duration<double, std::micro>(
-                         std::chrono::steady_clock::now() - t_start).count();
+                         std::chrono::steady_clock::now() - s.t_start).count();
     return result;
-  }
-  s.best_norm = 1e300;
-  s.best_origin = Initializer::kNone;
+  };
 
-  // 1. Motion coherence: step off the previous answer along its normal by
-  // about the motion since then, verify freedom, and iterate from there.
   const bool warm = coherent && options_.warm_start;
   // How far any probe point moved since the previous frame (m).
   const double motion =
@@ -189,22 +210,107 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
           ? (pair.X_SP.p_SP - s.previous_X_SP.p_SP).norm() +
                 RotationAngleBetween(s.previous_X_SP.R_SP, pair.X_SP.R_SP) * probe_->radius()
           : 0.0;
-  // Keep the leaf-pair list around the configuration we restart from, with
-  // room for the restart's step-off (about the motion) and the iterations'
-  // contact distance; a fast probe gets a wider list instead of a full BVH
-  // descent in every query.
-  if (warm && (s.has_previous || s.has_previous_free)) {
-    const Vector3 center = s.has_previous
-                               ? s.previous_q_S
-                               : Vector3(s.previous_X_SP.p_SP - pair.X_SP.p_SP);
-    const double need = 2.0 * motion + 6.0 * options_.contact_tol * size;
-    if (!s.candidates.Covers(pair, center, center, need))
-      s.candidates.Build(pair, center, std::max(options_.candidate_radius * size, 1.5 * need));
+  // Incremental update, step one: the previous answer's feature pairs,
+  // re-evaluated at the new pose, predict the new local contact model; its
+  // in-projection q_pred predicts the answer (no geometry query needed).
+  bool have_prediction = false;
+  Vector3 q_pred = Vector3::Zero();
+  // The prediction is a first-order model of a small motion: after a jump
+  // (more than kPredictionMotion of the pair's size since the last answer)
+  // the contact may have changed shape and the restarts below decide.
+  constexpr double kPredictionMotion = 5e-3;
+  if (warm && s.has_previous && !s.previous_constraints.empty() &&
+      motion <= kPredictionMotion * size) {
+    RefreshContactConstraints(pair, s.previous_q_S, s.previous_constraints, &s.constraints);
+    for (ContactConstraint& c : s.constraints) c.c += margin;
+    q_pred = MinNormPoint(s.constraints, options_.convergence_tol * size, &s.qp).q;
+    have_prediction = q_pred.allFinite();
   }
-  if (warm && s.has_previous) {
-    double offset = motion + options_.contact_tol * size;
-    for (int attempt = 0; attempt < 4; ++attempt, offset *= 4.0) {
-      const Vector3 q0 = s.previous_q_S + offset * s.previous_n_S;
+  // Keep the leaf-pair list around where this query will work: the
+  // prediction, else the configuration we restart from, with room for the
+  // motion and the iterations' contact distance.
+  if (warm && (s.has_previous || s.has_previous_free)) {
+    const Vector3 center = have_prediction  ? q_pred
+                           : s.has_previous ? s.previous_q_S
+                                            : Vector3(s.previous_X_SP.p_SP - pair.X_SP.p_SP);
+    const double need = (have_prediction ? 0.0 : 2.0 * motion) + 6.0 * contact_distance;
+    if (!s.candidates.Covers(pair, center, center, need))
+      s.candidates.Build(pair, center, options_.candidate_radius * size + need);
+  }
+
+  result.in_collision = InCollision(pair, Vector3::Zero(), &s.witness);
+  if (!result.in_collision) {
+    // Remember this free pose: the next contact starts from it.
+    s.has_previous = false;
+    s.has_previous_free = true;
+    s.previous_X_SP = pair.X_SP;
+    s.previous_constraints.clear();
+    return finish();
+  }
+  s.best_norm = 1e300;
+  s.best_origin = Initializer::kNone;
+  // The configuration last verified free by a full collision test (so the
+  // final check need not repeat it).
+  Vector3 verified_q_S = Vector3::Constant(1e300);
+
+  // 0. Incremental update, step two: from the prediction, localise and test
+  // the surfaces in one pass; while the configuration is free, in-project on
+  // what was found there and try the result the same way (a free target
+  // needs no out-projection). Stops at a local optimum, or hands a colliding
+  // target to the out-projecting iteration from the last free point.
+  if (have_prediction) {
+    const double tol = options_.convergence_tol * size;
+    Vector3 q = q_pred;
+    for (int k = 0; k < options_.max_iterations; ++k) {
+      if (s.OutOfBudget()) break;
+      s.constraints_q_S = Vector3::Constant(1e300);  // about to be overwritten
+      if (!CollectContactConstraintsIfSurfacesFree(pair, q, contact_distance, &s.constraints,
+                                                   &s.witness.tp, &s.witness.ts) ||
+          SolidContained(pair, q))
+        break;
+      s.constraints_q_S = q;
+      verified_q_S = q;
+      if (s.constraints.empty()) {
+        // Free but off the contact space (the probe moved away from the
+        // contact): land on it toward the query, then go on from there.
+        bool touched = false;
+        const Vector3 q_c = OutProject(pair, q, Vector3::Zero(), margin, &touched);
+        if (!touched) break;
+        q = q_c;
+        continue;
+      }
+      ++s.iterations;
+      s.Offer(q, Initializer::kMotionCoherence);
+      for (ContactConstraint& c : s.constraints) c.c += margin;
+      const Vector3 q_new = MinNormPoint(s.constraints, tol, &s.qp).q;
+      if (!(q_new.norm() < q.norm() - tol)) break;  // q is locally optimal
+      q = q_new;
+    }
+    // The last target collided: continue from the last free point the usual
+    // way (its out-projection lands on the contact space before the target).
+    if (s.best_origin != Initializer::kNone && q != verified_q_S)
+      s.Iterate(pair, options_, size, verified_q_S, Initializer::kMotionCoherence);
+  }
+
+  // 1. Motion coherence: step off the previous answer along its normal by
+  // about the motion since then, verify freedom, and iterate from there.
+  if (warm && s.has_previous && s.best_origin == Initializer::kNone) {
+    // Free candidates, nearest first: the previous answer stepped off along
+    // its normal by about the motion; the previous answer with the motion's
+    // translation undone (the probe back where it was free, off by the
+    // rotation only), stepped off a little.
+    const Vector3 back = s.previous_X_SP.p_SP - pair.X_SP.p_SP;
+    const double turn = RotationAngleBetween(s.previous_X_SP.R_SP, pair.X_SP.R_SP) * probe_->radius();
+    const double step = motion + contact_distance, back_step = turn + contact_distance;
+    const std::array<Vector3, 7> candidates = {
+        s.previous_q_S + step * s.previous_n_S,
+        s.previous_q_S + back + back_step * s.previous_n_S,
+        s.previous_q_S + 4.0 * step * s.previous_n_S,
+        s.previous_q_S + back + 4.0 * back_step * s.previous_n_S,
+        s.previous_q_S + back + 16.0 * back_step * s.previous_n_S,
+        s.previous_q_S + 16.0 * step * s.previous_n_S,
+        s.previous_q_S + 64.0 * step * s.previous_n_S};
+    for (const Vector3& q0 : candidates) {
       if (InCollision(pair, q0)) continue;
       bool touched = false;
       const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
@@ -219,7 +325,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     const Vector3 back = s.previous_X_SP.p_SP - pair.X_SP.p_SP;
     const double len = back.norm();
     if (len > 0.0) {
-      double offset = options_.contact_tol * size;
+      double offset = contact_distance;
       for (int attempt = 0; attempt < 3; ++attempt, offset *= 4.0) {
         const Vector3 q0 = back + offset * (back / len);
         if (InCollision(pair, q0)) continue;
@@ -269,13 +375,19 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
               [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });
     for (int i = 0; i < std::min<int>(options_.num_iterated_starts, s.starts.size()); ++i) {
       if (s.starts[i].contact_norm >= 1e300) break;
+      if (i > 0 && s.OutOfBudget()) break;
       s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin);
     }
   }
 
-  // 3. Verify; fall back to a dense directional search if needed.
-  bool valid = s.best_origin != Initializer::kNone && !InCollision(pair, s.best_q_S);
-  if (!valid && options_.num_sampling_directions > 0) {
+  // 3. Verify; fall back to a dense directional search if needed (not when
+  // the budget is spent: then the answer is reported invalid instead).
+  auto verified = [&] {
+    return s.best_origin != Initializer::kNone &&
+           (s.best_q_S == verified_q_S || !InCollision(pair, s.best_q_S));
+  };
+  bool valid = verified();
+  if (!valid && options_.num_sampling_directions > 0 && !s.stopped_early) {
     s.best_norm = 1e300;
     s.best_origin = Initializer::kNone;
     Vector3 best_contact = Vector3::Zero();
@@ -290,10 +402,11 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     }
     if (best_norm < 1e300)
       s.Iterate(pair, options_, size, best_contact, Initializer::kSamplingSearch);
-    valid = s.best_origin != Initializer::kNone && !InCollision(pair, s.best_q_S);
+    valid = verified();
   }
 
   result.valid = valid;
+  result.converged = !s.stopped_early;
   result.iterations = s.iterations;
   result.initializer = s.best_origin;
   if (s.best_origin != Initializer::kNone) {
@@ -303,7 +416,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     result.normal_W = s.best_norm > 0 ? Vector3(result.translation_W / s.best_norm)
                                       : Vector3::Zero();
     if (s.constraints_q_S != s.best_q_S)
-      CollectContactConstraints(pair, s.best_q_S, options_.contact_tol * size, &s.constraints);
+      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
     result.num_contacts = static_cast<int>(s.constraints.size());
     GroupContactRegions(s.constraints, s.best_q_S, X_WS, 0.1 * size, &result);
   }
@@ -313,12 +426,12 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     s.previous_q_S = s.best_q_S;
     s.previous_n_S = s.best_q_S / std::max(s.best_norm, 1e-300);
     s.previous_X_SP = pair.X_SP;
+    s.previous_constraints = s.constraints;
   } else {
     s.has_previous = false;
+    s.previous_constraints.clear();
   }
-  result.time_us = std::chrono::duration<double, std::micro>(
-                       std::chrono::steady_clock::now() - t_start).count();
-  return result;
+  return finish();
 }
 
 }  // namespace pd

@@ -47,6 +47,13 @@ struct PolyDepthOptions {
   // of the previous contact and reuse it while the probe stays inside that
   // budget (fraction of size). Larger: rebuilt less often, longer to walk.
   double candidate_radius = 3e-3;
+  // Bounded time for real-time callers: after this much work (box plus
+  // triangle tests; 0 = unbounded) or wall time (us; 0 = unbounded), Solve
+  // stops searching and returns its best verified-free answer so far with
+  // converged = false. It never returns a colliding answer: without any
+  // verified answer yet it continues to the first one.
+  int64_t max_work = 0;
+  double max_time_us = 0.0;
   uint64_t seed = 12345;
 };
 

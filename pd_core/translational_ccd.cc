@@ -1,8 +1,9 @@
 #include "pd_core/translational_ccd.h"
 
-#include <array>
+#include <algorithm>
 
 #include "pd_core/box_overlap.h"
+#include "pd_core/bvh_pair_descent.h"
 #include "pd_core/candidate_pairs.h"
 #include "pd_core/triangle_geometry.h"
 
@@ -45,73 +46,59 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   const Bvh& bvh_P = pair.P.bvh();
   const Bvh& bvh_S = pair.S.bvh();
   if (bvh_P.empty() || bvh_S.empty()) return -1.0;
-  const auto& nodes_P = bvh_P.nodes();
-  const auto& nodes_S = bvh_S.nodes();
   double s_best = 1.0;
   bool hit = false;
   double lo, hi;
-  const double covered =
-      pair.candidates ? pair.candidates->CoveredFraction(pair, offset_S, sweep_S, 0.0) : -1.0;
+  auto leaf_contacts = [&](int ip, int is) {
+    return ForEachTrianglePair(bvh_P, bvh_S, ip, is, [&](int tp, int ts) {
+      if (pair.counters) ++pair.counters->triangle_tests;
+      TriangleFirstContact(pair, tp, ts, offset_S, sweep_S, &s_best, &hit);
+      return true;
+    });
+  };
+  const CandidatePairs* list = pair.candidates;
+  const double covered = list ? list->CoveredFraction(pair, offset_S, sweep_S, 0.0) : -1.0;
   if (covered > 0.0) {
-    // Every pair that can touch on [0, covered] is listed; a first contact
-    // found there is exact. Past it, fall back to the full descent.
-    s_best = covered;
-    for (const auto& [ip, is] : pair.candidates->leaf_pairs()) {
-      const BvhNode& a = nodes_P[ip];
-      const BvhNode& b = nodes_S[is];
-      if (!SweptBoxContactInterval(ProbeBox(a, pair.X_SP, offset_S), b, sweep_S, s_best, &lo,
-                                   &hi))
-        continue;
-      for (int i = 0; i < a.count; ++i)
-        for (int j = 0; j < b.count; ++j)
-          TriangleFirstContact(pair, bvh_P.order()[a.right_or_first + i],
-                               bvh_S.order()[b.right_or_first + j], offset_S, sweep_S, &s_best,
-                               &hit);
+    // Every pair that can touch on [0, s] is in the list's prefix for the
+    // largest displacement over that part of the sweep; a first contact
+    // found there is exact. First contacts are usually close to the start
+    // (a start just off the contact space), so look at short parts first,
+    // doubling up to the covered fraction; past it, the full descent.
+    const auto& nodes_P = bvh_P.nodes();
+    const auto& nodes_S = bvh_S.nodes();
+    const double start_displacement = list->Displacement(pair, offset_S);
+    const double sweep_len = sweep_S.norm();
+    double s_part = std::min(covered, 0.05 * list->radius() / std::max(sweep_len, 1e-300));
+    for (;;) {
+      s_best = s_part;
+      const double displacement = start_displacement + s_part * sweep_len;
+      const int n = list->NearCount(0.0, displacement);
+      if (pair.counters) pair.counters->box_tests += n;
+      for (int k = 0; k < n; ++k) {
+        const CandidatePairs::Entry& e = list->entries()[k];
+        if (SweptBoxContactInterval(ProbeBox(nodes_P[e.ip], pair.X_SP, offset_S), nodes_S[e.is],
+                                    sweep_S, s_best, &lo, &hi))
+          leaf_contacts(e.ip, e.is);
+      }
+      if (hit) return s_best;
+      if (s_part >= covered) break;
+      s_part = std::min(covered, 4.0 * s_part);
     }
-    if (hit) return s_best;
     if (covered >= 1.0) return -1.0;
     s_best = 1.0;
   }
-
-  // Depth-first, nearer-in-time child pair first, pruning every node pair
-  // whose earliest possible contact is later than the best contact so far.
-  struct Entry {
-    int ip, is;
-    double s_lo;
-  };
-  std::array<Entry, 256> stack;
-  int top = 0;
-  if (!SweptBoxContactInterval(ProbeBox(nodes_P[0], pair.X_SP, offset_S), nodes_S[0],
-                               sweep_S, s_best, &lo, &hi))
-    return -1.0;
-  stack[top++] = {0, 0, lo};
-  while (top > 0) {
-    const Entry e = stack[--top];
-    if (e.s_lo > s_best) continue;
-    const BvhNode& a = nodes_P[e.ip];
-    const BvhNode& b = nodes_S[e.is];
-    if (a.is_leaf() && b.is_leaf()) {
-      for (int i = 0; i < a.count; ++i)
-        for (int j = 0; j < b.count; ++j)
-          TriangleFirstContact(pair, bvh_P.order()[a.right_or_first + i],
-                               bvh_S.order()[b.right_or_first + j], offset_S, sweep_S, &s_best,
-                               &hit);
-      continue;
-    }
-    const bool split_P =
-        b.is_leaf() || (!a.is_leaf() && NodeSize2(a) >= NodeSize2(b));
-    Entry child[2];
-    int n = 0;
-    for (int c = 0; c < 2; ++c) {
-      const int ip = split_P ? (c == 0 ? e.ip + 1 : a.right_or_first) : e.ip;
-      const int is = split_P ? e.is : (c == 0 ? e.is + 1 : b.right_or_first);
-      if (SweptBoxContactInterval(ProbeBox(nodes_P[ip], pair.X_SP, offset_S), nodes_S[is],
-                                  sweep_S, s_best, &lo, &hi))
-        child[n++] = {ip, is, lo};
-    }
-    if (n == 2 && child[0].s_lo < child[1].s_lo) std::swap(child[0], child[1]);
-    for (int c = 0; c < n; ++c) stack[top++] = child[c];
-  }
+  // Nearer-in-time node pairs first; a pair whose earliest possible contact
+  // is later than the best contact so far is dropped when popped.
+  DescendBvhPair(
+      bvh_P, bvh_S,
+      [&](const BvhNode& a, const BvhNode& b, double* key) {
+        if (!SweptBoxContactInterval(ProbeBox(a, pair.X_SP, offset_S), b, sweep_S, s_best, &lo,
+                                     &hi))
+          return false;
+        *key = lo;
+        return true;
+      },
+      [&](double s_lo) { return s_lo <= s_best; }, leaf_contacts, pair.counters);
   return hit ? s_best : -1.0;
 }
 
