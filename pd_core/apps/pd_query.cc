@@ -33,9 +33,10 @@ Blank lines and lines starting with # are skipped.
 Output (stdout): one JSON object per pose line, in order:
   {"collision", "valid", "depth", "translation": [x,y,z], "normal": [x,y,z],
    "iterations", "contacts", "regions": [{"point", "normal", "local_depth"}],
-   "initializer", "time_us"}
+   "initializer", "converged", "time_us"}
 all vectors in W, lengths in metres; translation moves the probe out of
-collision; time_us is solver time only. A malformed line (wrong number of
+collision; time_us is solver time only; converged is false when --max-work or
+--max-time-us stopped the search early (the answer is still verified free). A malformed line (wrong number of
 fields, not a number, NaN/inf, quaternion norm not within 1e-3 of 1) gives
 {"error": "line N: ..."} with N counting every input line from 1, and the
 following lines are still answered.
@@ -62,6 +63,7 @@ nlohmann::ordered_json ToJson(const pd::PenetrationResult& r) {
           {"contacts", r.num_contacts},
           {"regions", regions},
           {"initializer", pd::InitializerName(r.initializer)},
+          {"converged", r.converged},
           {"time_us", r.time_us}};
 }
 
@@ -100,6 +102,13 @@ int main(int argc, char** argv) {
   app.add_flag("--coherent", coherent,
                "warm-start each line from the previous answer (a moving probe); "
                "default solves every line cold");
+  pd::PolyDepthOptions options;
+  app.add_option("--max-work", options.max_work,
+                 "bounded time: stop after this many box + triangle tests (0: unbounded)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--max-time-us", options.max_time_us,
+                 "bounded time: stop after this many microseconds (0: unbounded)")
+      ->check(CLI::NonNegativeNumber);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -124,7 +133,7 @@ int main(int argc, char** argv) {
   if (!probe) return kExitMeshError;
   const auto scene = LoadModel(scene_path, scene_scale);
   if (!scene) return kExitMeshError;
-  pd::PolyDepthSolver solver(probe, scene);
+  pd::PolyDepthSolver solver(probe, scene, options);
 
   bool any_failed = false;
   std::string line;

@@ -270,6 +270,29 @@ elseif(CASE STREQUAL "scene_pose_and_scale")
   expect_equal("${RC}" 0 "exit code")
   expect_pd("${LINE_1}" 0.10710 0.10712 +x)
 
+elseif(CASE STREQUAL "budget")
+  # Bounded time: a spent budget stops the search after its first verified
+  # answer (converged false, still valid and an upper bound); no budget
+  # converges; a negative budget is a usage error.
+  set(input "0.8 0.05 0.02 ${QZ45}\n")
+  run_pd_query("${input}" "${BOX}" "${BOX}")
+  expect_equal("${RC}" 0 "unbounded exit code")
+  json_get(converged "${LINE_1}" converged)
+  expect_equal("${converged}" ON "unbounded converged")
+  json_get(exact "${LINE_1}" depth)
+  run_pd_query("${input}" "${BOX}" "${BOX}" --max-time-us 0.001)
+  expect_equal("${RC}" 0 "bounded exit code")
+  json_get(converged "${LINE_1}" converged)
+  expect_equal("${converged}" OFF "bounded converged")
+  json_get(valid "${LINE_1}" valid)
+  expect_equal("${valid}" ON "bounded valid")
+  json_get(bounded "${LINE_1}" depth)
+  if(bounded LESS exact)
+    fail("bounded depth ${bounded} below the converged ${exact}")
+  endif()
+  run_pd_query("${input}" "${BOX}" "${BOX}" --max-work -1)
+  expect_equal("${RC}" 3 "negative budget exit code")
+
 elseif(CASE STREQUAL "coherent")
   # The probe slides into the cube along -x; depth = 1 - x on every line,
   # answered cold by default and warm-started with --coherent.

@@ -1,0 +1,103 @@
+// The one BVH pair descent (pd_core/bvh_pair_descent.h): it visits exactly
+// the leaf pairs a brute-force sweep keeps, in any tree shape, including
+// trees deeper than its fixed stack (which once overflowed silently), and
+// depth is measured from the links, not trusted.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <utility>
+
+#include "pd_core/bvh_pair_descent.h"
+
+namespace pd {
+namespace {
+
+// A degenerate "caterpillar" tree over n unit-spaced leaves along x: node
+// 2k is internal with a leaf (2k+1) on the left and the rest of the chain on
+// the right, so the depth is about n. Axis-aligned boxes.
+Bvh Caterpillar(int n, double x0) {
+  std::vector<BvhNode> nodes;
+  std::vector<int32_t> order;
+  for (int k = 0; k < n; ++k) order.push_back(k);
+  for (int k = 0; k < n; ++k) {
+    const bool last = k == n - 1;
+    if (!last) {
+      BvhNode internal;
+      internal.R_MB = Matrix3::Identity();
+      // Spans leaves k .. n-1: x in [x0 + k - 0.4, x0 + n - 1 + 0.4].
+      const double lo = x0 + k - 0.4, hi = x0 + n - 1 + 0.4;
+      internal.center_M = Vector3(0.5 * (lo + hi), 0, 0);
+      internal.half_B = Vector3(0.5 * (hi - lo), 0.4, 0.4);
+      internal.count = 0;
+      nodes.push_back(internal);
+    }
+    BvhNode leaf;
+    leaf.R_MB = Matrix3::Identity();
+    leaf.center_M = Vector3(x0 + k, 0, 0);
+    leaf.half_B = Vector3(0.4, 0.4, 0.4);
+    leaf.right_or_first = k;
+    leaf.count = 1;
+    nodes.push_back(leaf);
+    if (!last) nodes[nodes.size() - 2].right_or_first = static_cast<int32_t>(nodes.size());
+  }
+  return Bvh::FromNodes(std::move(nodes), std::move(order));
+}
+
+bool Overlap(const BvhNode& a, const BvhNode& b) {
+  return ((a.center_M - b.center_M).cwiseAbs() - a.half_B - b.half_B).maxCoeff() <= 0.0;
+}
+
+TEST(BvhPairDescent, DepthIsMeasuredFromTheLinks) {
+  EXPECT_EQ(Caterpillar(1, 0.0).depth(), 1);
+  EXPECT_EQ(Caterpillar(2, 0.0).depth(), 2);
+  EXPECT_EQ(Caterpillar(300, 0.0).depth(), 300);
+}
+
+TEST(BvhPairDescent, TreesDeeperThanTheFixedStackVisitExactlyTheOverlappingLeafPairs) {
+  // 300 + 300 levels: needs a stack of ~600 entries, more than the fixed one.
+  const Bvh a = Caterpillar(300, 0.0), b = Caterpillar(300, 0.5);
+  ASSERT_GT(a.depth() + b.depth() + 1, kDescentStackCapacity);
+  std::set<std::pair<int, int>> visited;
+  ProximityCounters counters;
+  DescendBvhPair(
+      a, b,
+      [](const BvhNode& x, const BvhNode& y, double* key) {
+        *key = 0.0;
+        return Overlap(x, y);
+      },
+      [](double) { return true; },
+      [&](int ip, int is) {
+        EXPECT_TRUE(visited.insert({ip, is}).second) << "leaf pair visited twice";
+        return true;
+      },
+      &counters);
+  std::set<std::pair<int, int>> expected;
+  for (int i = 0; i < static_cast<int>(a.nodes().size()); ++i)
+    for (int j = 0; j < static_cast<int>(b.nodes().size()); ++j)
+      if (a.nodes()[i].is_leaf() && b.nodes()[j].is_leaf() && Overlap(a.nodes()[i], b.nodes()[j]))
+        expected.insert({i, j});
+  EXPECT_EQ(visited, expected);
+  EXPECT_GT(counters.box_tests, 0);
+}
+
+TEST(BvhPairDescent, KeysOrderTheVisitAndAliveDropsPairsWhenPopped) {
+  const Bvh a = Caterpillar(40, 0.0), b = Caterpillar(40, 0.0);
+  // Key: the node pair's x distance from x = 20; stop at the first leaf pair.
+  std::vector<std::pair<int, int>> visited;
+  DescendBvhPair(
+      a, b,
+      [](const BvhNode& x, const BvhNode& y, double* key) {
+        *key = std::abs(x.center_M.x() - 20.0) + std::abs(y.center_M.x() - 20.0);
+        return Overlap(x, y);
+      },
+      [](double key) { return key < 1e9; },
+      [&](int ip, int is) {
+        visited.push_back({ip, is});
+        return false;  // stop the descent
+      });
+  ASSERT_EQ(visited.size(), 1u);
+}
+
+}  // namespace
+}  // namespace pd
