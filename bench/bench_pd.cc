@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
             << ", output to " << out_dir << "\n";
 
   ModelCache cache(st.mesh_dir, quick ? 1 : 3);
-  std::vector<HapticPairResult> haptic;
+  std::vector<HapticPairResult>& haptic = run.haptic;
   for (const HapticPairSpec& spec : DefaultHapticPairs()) {
     if (quick && !spec.in_quick) continue;
     std::string why;
@@ -166,9 +166,17 @@ int main(int argc, char** argv) {
     }
     haptic.push_back(RunHapticPair({spec.name, tool, object}, spec, st));
   }
-  PrintHapticHeadlines(haptic);
   const std::string haptic_csv = WriteHapticCsv(haptic, out_dir);
-  if (haptic_only) return 0;
+  if (haptic_only) {
+    run.total_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    run.load_average_end = ReadLoadAverage();
+    const std::string report = out_dir + "/pd_haptic.md";
+    WriteHapticReport(run, report, {haptic_csv}, WritePlots(run, out_dir));
+    PrintHapticHeadlines(haptic);
+    std::printf("\nbench_pd: report %s (%.0f s)\n", report.c_str(), run.total_seconds);
+    return 0;
+  }
 
   // Models: the pairs', plus ~100k-triangle ones for the precomputation target.
   std::vector<BenchPair> pairs;
@@ -214,11 +222,13 @@ int main(int argc, char** argv) {
   run.total_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   run.load_average_end = ReadLoadAverage();
-  const std::vector<std::string> csvs = WriteCsvFiles(run, out_dir);
+  std::vector<std::string> csvs = WriteCsvFiles(run, out_dir);
+  if (!haptic.empty()) csvs.push_back(haptic_csv);
   const std::vector<std::string> pngs = WritePlots(run, out_dir);
   const std::string report = out_dir + "/pd_speed_error.md";
   WriteMarkdownReport(run, report, csvs, pngs);
   PrintHeadlines(run);
+  PrintHapticHeadlines(haptic);
   std::printf("\nbench_pd: report %s (%.0f s)\n", report.c_str(), run.total_seconds);
   return 0;
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bench/bench_models.h"
+#include "bench/haptic_paths.h"
 #include "bench/machine_info.h"
 #include "bench/scenarios.h"
 #include "pd_core/pose.h"
@@ -105,6 +106,30 @@ struct RunSettings {
   std::string mesh_dir, out_dir;
 };
 
+// A warm answer counts as free only if the tool stays free this much further
+// along the answer (fraction of the pair's size): no thin free pockets.
+inline constexpr double kHapticFreeMargin = 2e-6;
+
+struct HapticStep {
+  Case c;
+  PdOutcome pd;
+  bool free_beyond = false;   // still free kHapticFreeMargin * size further out
+  bool converged = true;      // result.converged
+  bool cold_restart = false;  // colliding, not the first pose, not warm-started
+  double box_tests = 0, triangle_tests = 0;
+  double fcl_time_us = kNaN;
+  bool fcl_collide = false;
+  bool has_ref = false;
+  RefOutcome ref;
+};
+
+struct HapticPairResult {
+  HapticPairSpec spec;
+  BenchPair pair;
+  std::string description;
+  std::vector<HapticStep> steps;
+};
+
 struct BenchRun {
   MachineInfo machine;
   RunSettings settings;
@@ -112,6 +137,7 @@ struct BenchRun {
   std::vector<std::string> skipped;                      // pairs skipped, with reasons
   std::vector<PairResult> pairs;
   std::vector<SweepRow> sweep;
+  std::vector<HapticPairResult> haptic;  // the haptic scenario (haptic_bench.h)
   double total_seconds = 0.0;
   std::string load_average_end;
 };

@@ -12,30 +12,6 @@
 
 namespace pd_bench {
 
-// A warm answer counts as free only if the tool stays free this much further
-// along the answer (fraction of the pair's size): no thin free pockets.
-inline constexpr double kHapticFreeMargin = 2e-6;
-
-struct HapticStep {
-  Case c;
-  PdOutcome pd;
-  bool free_beyond = false;   // still free kHapticFreeMargin * size further out
-  bool converged = true;      // result.converged
-  bool cold_restart = false;  // colliding, not the first pose, not warm-started
-  double box_tests = 0, triangle_tests = 0;
-  double fcl_time_us = kNaN;
-  bool fcl_collide = false;
-  bool has_ref = false;
-  RefOutcome ref;
-};
-
-struct HapticPairResult {
-  HapticPairSpec spec;
-  BenchPair pair;
-  std::string description;
-  std::vector<HapticStep> steps;
-};
-
 struct HapticSummary {
   int steps = 0, colliding = 0;
   Summary pd_us;           // colliding poses

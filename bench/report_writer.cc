@@ -7,6 +7,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "bench/haptic_bench.h"
 #include "bench/markdown_format.h"
 #include "bench/observations.h"
 #include "bench/published_numbers.h"
@@ -264,6 +265,66 @@ void SweepSection(const BenchRun& run, std::ostream& md) {
   md << "\n";
 }
 
+// Targets of the warm-PD issue, measured on the haptic paths.
+constexpr double kHapticMedianRatio = 2.0, kHapticP99Ratio = 10.0, kHapticMaxUs = 1000.0;
+constexpr double kHapticMeanError = 0.01;
+
+void HapticSection(const BenchRun& run, std::ostream& md) {
+  if (run.haptic.empty()) return;
+  md << "## Haptic scenario: a mesh tool sliding over a mesh object\n\n"
+     << "What the servo loop asks of PolyDepth: one warm-started query per millisecond while a "
+        "mesh tool (bounding radius "
+     << F(kHapticToolRadius * 100, 1) << " cm) slides over a mesh object (radius "
+     << F(kHapticObjectRadius * 100, 1)
+     << " cm), turning, a set depth below first contact, losing and regaining contact (two 1 mm "
+        "lift-offs per path; a hand that digs in more than 1 mm too deep stops sliding until it "
+        "has climbed back). "
+     << run.settings.haptic_steps << " poses per path. Time = `result.time_us` with default "
+        "`PolyDepthOptions`, over the colliding poses; FCL = `fcl::collide` of "
+        "`BVHModel<OBB>` meshes (boolean, first contact) at the same poses, measured in the same "
+        "run after PolyDepth: the cost of a collision test, the yardstick for a warm PD query. "
+        "Cold restarts = colliding poses after the first whose answer did not come from motion "
+        "coherence. An answer counts as free only if the tool is also free "
+     << G(kHapticFreeMargin) << " x pair size further out along it. Reference: "
+     << run.settings.haptic_ref << " colliding poses per path, spread evenly, no hint.\n\n";
+  md << "| Pair | Tool / object tris | Motion | Poses (colliding) | PD median / p99 / p99.9 / max us "
+        "| FCL collide median / p99 us | ratio median / p99 | free-pose median us | iter. | "
+        "boxes / tris per query | cold restarts | not converged | not free (+margin) | ref | "
+        "mean / max \\|err\\| |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const HapticPairResult& r : run.haptic) {
+    const HapticSummary m = SummarizeHaptic(r);
+    md << "| " << r.spec.name << " | " << r.pair.probe->triangles << " / " << r.pair.scene->triangles
+       << " | " << F(r.spec.speed_m_s, 2) << " m/s, " << F(r.spec.turn_deg_s, 0) << " deg/s, "
+       << F(r.spec.depth_m * 1e3, 1) << " mm | " << m.steps << " (" << m.colliding << ") | "
+       << F(m.pd_us.median) << " / " << F(m.pd_us.p99) << " / " << F(m.p999_us) << " / "
+       << F(m.pd_us.max) << " | " << F(m.fcl_us.median) << " / " << F(m.fcl_us.p99) << " | "
+       << F(m.median_ratio, 2) << " / " << F(m.p99_ratio, 2) << " | " << F(m.pd_free_us.median)
+       << " | " << F(m.mean_iterations, 2) << " | " << F(m.mean_box_tests, 0) << " / "
+       << F(m.mean_triangle_tests, 0) << " | " << m.cold_restarts << " | " << m.not_converged
+       << " | " << m.invalid << " (" << m.not_free_beyond << ") | " << m.n_ref << " | "
+       << Pct(m.abs_error.mean) << " / " << Pct(m.abs_error.max) << " |\n";
+  }
+  md << "\n| Target (haptic paths) | Pair | Measured | PASS/MISS |\n|---|---|---|---|\n";
+  for (const HapticPairResult& r : run.haptic) {
+    const HapticSummary m = SummarizeHaptic(r);
+    md << "| median <= " << F(kHapticMedianRatio, 0) << "x FCL collide | " << r.spec.name << " | "
+       << F(m.median_ratio, 2) << "x | " << PassMiss(m.median_ratio <= kHapticMedianRatio) << " |\n"
+       << "| p99 <= " << F(kHapticP99Ratio, 0) << "x FCL collide p99 | " << r.spec.name << " | "
+       << F(m.p99_ratio, 2) << "x | " << PassMiss(m.p99_ratio <= kHapticP99Ratio) << " |\n"
+       << "| max <= " << F(kHapticMaxUs, 0) << " us | " << r.spec.name << " | " << F(m.pd_us.max)
+       << " us | " << PassMiss(m.pd_us.max <= kHapticMaxUs) << " |\n"
+       << "| no cold restart | " << r.spec.name << " | " << m.cold_restarts << " | "
+       << PassMiss(m.cold_restarts == 0) << " |\n"
+       << "| every answer free (+" << G(kHapticFreeMargin) << " x size) | " << r.spec.name
+       << " | " << m.not_free_beyond << " not | " << PassMiss(m.not_free_beyond == 0) << " |\n"
+       << "| mean \\|error\\| <= " << Pct(kHapticMeanError, 0) << " | " << r.spec.name << " | "
+       << Pct(m.abs_error.mean) << " (" << m.n_ref << " ref) | "
+       << PassMiss(m.abs_error.mean <= kHapticMeanError) << " |\n";
+  }
+  md << "\n";
+}
+
 }  // namespace
 
 void WriteMarkdownReport(const BenchRun& run, const std::string& path,
@@ -280,6 +341,7 @@ void WriteMarkdownReport(const BenchRun& run, const std::string& path,
   TargetsSection(run, md);
   SettingsSection(run, md);
   ModelsSection(run, md);
+  HapticSection(run, md);
   ResultsSection(run, md);
   BaselinesSection(run, md);
   PaperSection(run, md);
@@ -289,6 +351,23 @@ void WriteMarkdownReport(const BenchRun& run, const std::string& path,
   for (const std::string& f : csv_files) md << "- [" << f << "](" << f << ")\n";
   for (const std::string& f : png_files) md << "- [" << f << "](" << f << "): ![" << f << "](" << f << ")\n";
   if (!png_files.empty()) md << "- pd_plots.gp: the gnuplot script (data inline) behind the plots\n";
+}
+
+void WriteHapticReport(const BenchRun& run, const std::string& path,
+                       const std::vector<std::string>& csv_files,
+                       const std::vector<std::string>& png_files) {
+  std::ofstream md(path);
+  if (!md) throw std::runtime_error("cannot write " + path);
+  md << "# Warm PolyDepth at haptic rates\n\n"
+        "Generated by `build/bin/bench_pd --haptic-only"
+     << (run.settings.quick ? " --quick" : "")
+     << "` (bench/bench_pd.cc); every number below was measured in this run. The full "
+        "benchmark (`bench/run_pd_bench.sh`) includes this section in pd_speed_error.md.\n\n";
+  MachineSection(run, md);
+  HapticSection(run, md);
+  md << "## Files\n\n";
+  for (const std::string& f : csv_files) md << "- [" << f << "](" << f << ")\n";
+  for (const std::string& f : png_files) md << "- [" << f << "](" << f << "): ![" << f << "](" << f << ")\n";
 }
 
 }  // namespace pd_bench

@@ -13,4 +13,9 @@ void WriteMarkdownReport(const BenchRun& run, const std::string& path,
                          const std::vector<std::string>& csv_files,
                          const std::vector<std::string>& png_files);
 
+// The haptic scenario alone (bench_pd --haptic-only): pd_haptic.md.
+void WriteHapticReport(const BenchRun& run, const std::string& path,
+                       const std::vector<std::string>& csv_files,
+                       const std::vector<std::string>& png_files);
+
 }  // namespace pd_bench
