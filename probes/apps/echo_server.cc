@@ -1,5 +1,6 @@
 // echo_server: the transport-only baseline. Answers every probe_pose_t with a
-// zero wrench_t that echoes pose seq and utime, with no computation, and
+// zero wrench_t that echoes pose seq, utime and sender session (any sender:
+// it has no source lock), with no computation, and
 // publishes a server_status_t at 10 Hz. The round trip measured against it is
 // the LCM/loopback share of the real server's latency.
 #include <CLI/CLI.hpp>
@@ -45,6 +46,7 @@ class Echo {
     w.seq = answered_;
     w.pose_seq = pose.seq;
     w.pose_utime = pose.utime;
+    w.pose_session = pose.sender_session;
     w.utime = probes::MonotonicUs();
     if (lcm_->publish(wrench_channel_, &w) == 0) ++answered_;
   }
