@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "haptics_msgs/probe_pose_t.hpp"
+#include "haptics_msgs/probe_pose_v1_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
 #include "probes/input_error.h"
 #include "probes/load_trajectory.h"
@@ -34,8 +35,12 @@ std::vector<uint8_t> Encode(const Msg& msg) {
   return buf;
 }
 
-haptics_msgs::probe_pose_t Pose(int64_t seq, int64_t utime, double z) {
+haptics_msgs::probe_pose_t Pose(int64_t seq, int64_t utime, double z, int64_t session = 0x5e55,
+                                const std::string& device = "sigma7") {
   haptics_msgs::probe_pose_t p{};
+  p.version = haptics_msgs::probe_pose_t::VERSION;
+  p.sender_session = session;
+  p.sender_device = device;
   p.seq = seq;
   p.utime = utime;
   p.position[2] = z;
@@ -105,6 +110,54 @@ TEST(TrajectoryLcmLog, NonIncreasingUtimeIsAnError) {
     WriteEvent(&log, "PROBE_POSE", Encode(Pose(2, 10, 0.1)));
   }
   EXPECT_THROW(ReadTrajectoryLcmLog(path, "PROBE_POSE"), InputError);
+}
+
+TEST(TrajectoryLcmLog, AVersionOneLogIsRejectedNamingTheConverter) {
+  const std::string path = ::testing::TempDir() + "probes_tests_v1.lcmlog";
+  {
+    lcm::LogFile log(path, "w");
+    haptics_msgs::probe_pose_v1_t old{};
+    old.seq = 1;
+    old.utime = 10;
+    old.orientation[0] = 1.0;
+    WriteEvent(&log, "PROBE_POSE", Encode(old));
+  }
+  try {
+    ReadTrajectoryLcmLog(path, "PROBE_POSE");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path + ": event 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("version 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("probe_log_upgrade"), std::string::npos) << what;
+  }
+}
+
+TEST(TrajectoryLcmLog, ALogOfTwoSendersNeedsOneChosen) {
+  const std::string path = ::testing::TempDir() + "probes_tests_two_senders.lcmlog";
+  {
+    lcm::LogFile log(path, "w");
+    // Interleaved, as a log recorded while two clients published looks.
+    for (int64_t k = 0; k < 4; ++k) {
+      WriteEvent(&log, "PROBE_POSE", Encode(Pose(k, 1000 * (k + 1), 0.01, 0xaaaa, "sigma7")));
+      WriteEvent(&log, "PROBE_POSE", Encode(Pose(k, 1000 * (k + 1) + 500, 0.05, 0xbbbb, "probe_sim")));
+    }
+  }
+  try {
+    ReadTrajectoryLcmLog(path, "PROBE_POSE");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("2 senders"), std::string::npos) << what;
+    EXPECT_NE(what.find("0x000000000000aaaa 'sigma7' (4 poses)"), std::string::npos) << what;
+    EXPECT_NE(what.find("0x000000000000bbbb 'probe_sim' (4 poses)"), std::string::npos) << what;
+    EXPECT_NE(what.find("--log-session"), std::string::npos) << what;
+  }
+  const Trajectory b = LoadTrajectory(path, "PROBE_POSE", 0xbbbb);
+  ASSERT_EQ(b.size(), 4u);
+  for (const PoseSample& s : b) EXPECT_DOUBLE_EQ(s.p_WP[2], 0.05);
+  EXPECT_DOUBLE_EQ(b[3].t, 0.003);
+  EXPECT_THROW(ReadTrajectoryLcmLog(path, "PROBE_POSE", 0xcccc), InputError);
 }
 
 TEST(TrajectoryLcmLog, CsvIsNotMistakenForALog) {
