@@ -162,7 +162,14 @@ TEST(HapticRenderer, ANewSenderSessionReEngagesFromZeroWithTheToolAtItsHandle) {
   for (int i = 0; i < 500; ++i) from(0xa, Vector3(0, 0, 0.003));  // A presses: about 5 N
   ASSERT_GT(rig.renderer->output().wrench.f_W.z(), 3.0);
   EXPECT_EQ(rig.renderer->output().pose_session, 0xa);
-  // B's first pose, 5 cm away in free space: no yank toward it, no inherited force.
+  // A falls silent; the receiver hands B over only after the watchdog timeout
+  // plus the ramp (pose_source_lock.h), when the force is zero.
+  const int silent_ticks =
+      static_cast<int>((config.servo.watchdog_timeout_s + config.servo.watchdog_ramp_s) / kDt) + 2;
+  for (int i = 0; i < silent_ticks; ++i) rig.Tick(nullptr);
+  ASSERT_EQ(rig.renderer->output().wrench.f_W, Vector3::Zero());
+  // B's first pose, 5 cm away in free space: the tool appears at B's handle
+  // (not dragged over from A's), the force starts from zero.
   const Vector3 p_B(0.05, -0.05, 0.04);
   const WrenchOutput& first = from(0xb, p_B);
   EXPECT_EQ(first.pose_session, 0xb);
