@@ -11,6 +11,7 @@
 #include "haptics_msgs/wrench_t.hpp"
 #include "probes/input_error.h"
 #include "probes/load_trajectory.h"
+#include "probes/log_upgrade.h"
 #include "probes/trajectory_lcm_log.h"
 #include "temp_file.h"
 
@@ -158,6 +159,73 @@ TEST(TrajectoryLcmLog, ALogOfTwoSendersNeedsOneChosen) {
   for (const PoseSample& s : b) EXPECT_DOUBLE_EQ(s.p_WP[2], 0.05);
   EXPECT_DOUBLE_EQ(b[3].t, 0.003);
   EXPECT_THROW(ReadTrajectoryLcmLog(path, "PROBE_POSE", 0xcccc), InputError);
+}
+
+TEST(LogUpgrade, AVersionOneLogConvertedReadsBackWithTheSameMotion) {
+  const std::string old_path = ::testing::TempDir() + "probes_tests_upgrade_v1.lcmlog";
+  const std::string new_path = ::testing::TempDir() + "probes_tests_upgrade_v2.lcmlog";
+  const std::vector<uint8_t> wrench_bytes = Encode(haptics_msgs::wrench_t{});
+  {
+    lcm::LogFile log(old_path, "w");
+    WriteEvent(&log, "LCM_SELF_TEST", {9, 8, 7});
+    for (int64_t k = 0; k < 3; ++k) {
+      haptics_msgs::probe_pose_v1_t old{};
+      old.seq = 10 + k;
+      old.utime = 2'000'000 + 1000 * k;
+      old.position[0] = 0.001 * k;
+      old.position[2] = 0.02;
+      old.orientation[0] = 1.0;
+      old.has_velocity = true;
+      old.linear_velocity[0] = 1.0;
+      WriteEvent(&log, "PROBE_POSE", Encode(old));
+      WriteEvent(&log, "HAPTIC_WRENCH", wrench_bytes);
+    }
+  }
+  EXPECT_THROW(ReadTrajectoryLcmLog(old_path, "PROBE_POSE"), InputError);
+  const LogUpgradeCounts n = UpgradePoseLog(old_path, new_path, "PROBE_POSE", MakeSender("0x1234", "old_rig"));
+  EXPECT_EQ(n.upgraded, 3);
+  EXPECT_EQ(n.already, 0);
+  EXPECT_EQ(n.copied, 4);
+  const Trajectory t = ReadTrajectoryLcmLog(new_path, "PROBE_POSE");
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_DOUBLE_EQ(t[2].t, 0.002);
+  EXPECT_DOUBLE_EQ(t[2].p_WP[0], 0.002);
+  EXPECT_DOUBLE_EQ(t[2].p_WP[2], 0.02);
+  EXPECT_DOUBLE_EQ(t[1].v_WP[0], 1.0);
+  // Identity on every pose; other events byte for byte.
+  lcm::LogFile log(new_path, "r");
+  int poses = 0, wrenches = 0;
+  for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
+    if (e->channel == "PROBE_POSE") {
+      haptics_msgs::probe_pose_t p{};
+      ASSERT_EQ(p.decode(e->data, 0, e->datalen), e->datalen);
+      EXPECT_EQ(p.version, int{haptics_msgs::probe_pose_t::VERSION});
+      EXPECT_EQ(p.sender_session, 0x1234);
+      EXPECT_EQ(p.sender_device, "old_rig");
+      EXPECT_EQ(p.seq, 10 + poses++);
+    } else if (e->channel == "HAPTIC_WRENCH") {
+      ++wrenches;
+      EXPECT_EQ(std::vector<uint8_t>(static_cast<const uint8_t*>(e->data),
+                                     static_cast<const uint8_t*>(e->data) + e->datalen),
+                wrench_bytes);
+    }
+  }
+  EXPECT_EQ(poses, 3);
+  EXPECT_EQ(wrenches, 3);
+}
+
+TEST(LogUpgrade, GarbageOnThePoseChannelIsAnErrorNamingTheEvent) {
+  const std::string old_path = ::testing::TempDir() + "probes_tests_upgrade_bad.lcmlog";
+  {
+    lcm::LogFile log(old_path, "w");
+    WriteEvent(&log, "PROBE_POSE", {1, 2, 3});
+  }
+  try {
+    UpgradePoseLog(old_path, old_path + ".out", "PROBE_POSE", MakeSender("", "x"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("event 1 on 'PROBE_POSE' is neither"), std::string::npos) << e.what();
+  }
 }
 
 TEST(TrajectoryLcmLog, CsvIsNotMistakenForALog) {
