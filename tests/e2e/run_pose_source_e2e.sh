@@ -69,6 +69,8 @@ slide=(--script slide --centre 0.06 -0.06 0.04 --amplitude 0.03 --depth 0 --appr
 case "$scenario" in
   two_senders)
     start_server
+    "$bin/probe_recorder" --out "$work/run.lcmlog" >"$work/recorder.out" 2>"$work/recorder.err" &
+    recorder=$!
     sim_session=0x5151515151515151
     ( sleep 4; "$bin/probe_sim" "${slide[@]}" --duration 4 --session "$sim_session" ) >"$work/sim.out" 2>&1 &
     sim=$!
@@ -77,8 +79,10 @@ case "$scenario" in
       --summary "$work/summary.json" --start-delay 20 --realtime --max-superseded 0.2 \
       --max-force 7 >"$work/replay.out" 2>"$work/replay.err" || replay_rc=$?
     wait "$sim" || fail "probe_sim failed: $(cat "$work/sim.out")"
+    kill -INT "$recorder"
+    wait "$recorder" || fail "probe_recorder failed: $(cat "$work/recorder.err")"
     stop_server
-    cat "$work/replay.out" "$work/sim.out"
+    cat "$work/replay.out" "$work/sim.out" "$work/recorder.out"
     ((replay_rc == 0)) || fail "probe_replay failed (exit $replay_rc) while another sender published"
     sim_sent=$(grep -o 'published [0-9]*' "$work/sim.out" | grep -o '[0-9]*')
     require "the replay's answers from another stream" "$(json_int "$work/summary.json" other_stream_answers)" == 0
@@ -91,6 +95,13 @@ case "$scenario" in
     require "source_locks" "$(server_value source_locks)" == 1
     [[ "$(server_value source_device)" == "'probe_replay'" ]] || fail "the source is $(server_value source_device)"
     require "log lines naming the rejected sender" "$(grep -c "rejecting sender $sim_session 'probe_sim'" "$work/server.err")" == 1
+    # The recording names both senders; replaying it must pick one.
+    grep -q "pose senders: 0x[0-9a-f]* 'probe_replay' [0-9]*, $sim_session 'probe_sim' [0-9]*" "$work/recorder.out" ||
+      fail "probe_recorder does not list both senders: $(cat "$work/recorder.out")"
+    log_rc=0
+    "$bin/probe_replay" --trajectory "$work/run.lcmlog" --start-delay 0 >"$work/log_replay.out" 2>&1 || log_rc=$?
+    ((log_rc == 1)) && grep -q "holds 2 senders.*--log-session" "$work/log_replay.out" ||
+      fail "replaying a two-sender log without --log-session did not stop with the senders listed (exit $log_rc): $(cat "$work/log_replay.out")"
     ;;
   takeover)
     short_trajectory
