@@ -51,7 +51,9 @@ PoseSample ToPoseSample(const haptics_msgs::probe_pose_t& msg) {
 
 PoseSourceOptions MakePoseSourceOptions(const SceneConfig& config, PoseSourcePin pin) {
   PoseSourceOptions o;
-  o.release_after_s = config.servo.watchdog_timeout_s + config.servo.watchdog_ramp_s;
+  // The loop's watchdog counts from the tick that took the last pose, up to
+  // a period after its receipt: two periods more and the ramp is surely over.
+  o.release_after_s = config.servo.watchdog_timeout_s + config.servo.watchdog_ramp_s + 2.0 / config.servo.rate_hz;
   o.pin = std::move(pin);
   o.workspace_min = config.device.workspace_min;
   o.workspace_max = config.device.workspace_max;

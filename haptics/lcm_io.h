@@ -78,7 +78,7 @@ struct PoseSourceOptions {
 };
 
 // The receiver options of a scene: release after servo.watchdog_timeout_s +
-// servo.watchdog_ramp_s, the device workspace, and `pin`.
+// servo.watchdog_ramp_s + two servo periods, the device workspace, and `pin`.
 PoseSourceOptions MakePoseSourceOptions(const SceneConfig& config, PoseSourcePin pin);
 
 class PoseReceiver {

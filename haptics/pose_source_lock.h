@@ -7,8 +7,9 @@
 //  - while that stream is alive, poses from any other sender are rejected
 //    (counted; the caller logs each new sender once);
 //  - the stream stays alive while its valid poses keep coming; once it has
-//    been silent for `release_after` (the watchdog timeout plus the ramp, so
-//    the force has gone to zero) the next valid sender takes over;
+//    been silent for `release_after` (the watchdog timeout plus the ramp plus
+//    two servo periods, see MakePoseSourceOptions in lcm_io.h: the force
+//    has gone to zero) the next valid sender takes over;
 //  - an optional pin accepts only a given session and/or device name, so a
 //    stray client can never take over even when the device is silent.
 // A sender that changes its session (or device name) is a new sender: a

@@ -118,7 +118,7 @@ case "$scenario" in
     grep -q "rejected this replay's poses" "$work/rejected.out" || fail "the rejected replay does not say its poses were rejected"
     grep -q "rendered another sender's stream (0xa0a0a0a0a0a0a0a0)" "$work/rejected.out" ||
       fail "the rejected replay does not name the stream that was rendered"
-    sleep 0.5  # A silent for longer than watchdog timeout + ramp (100 ms)
+    sleep 0.5  # A silent for longer than watchdog timeout + ramp (102 ms)
     replay_rc=0
     "$bin/probe_replay" --trajectory "$work/short.csv" --out "$work/result.csv" --summary "$work/summary.json" \
       --start-delay 20 --realtime --max-superseded 0.2 --max-force 7 >"$work/replay.out" 2>&1 || replay_rc=$?
@@ -149,7 +149,7 @@ case "$scenario" in
     sleep 0.2
     stop_server
     # Rejected while the old id was alive (about 1.5 s of overlap, less the
-    # second sim's start-up, plus the 100 ms release time), then locked:
+    # second sim's start-up, plus the 102 ms release time), then locked:
     # never rendered interleaved.
     require "poses_rejected_other_sender" "$(server_value poses_rejected_other_sender)" ">=" 500
     require "poses_rejected_other_sender" "$(server_value poses_rejected_other_sender)" "<=" 2500

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "haptics/lcm_io.h"
+#include "haptics/load_scene_config.h"
 #include "haptics_msgs/probe_pose_v1_t.hpp"
 
 namespace haptics {
@@ -140,6 +141,16 @@ TEST(PoseSourceReceiver, PinnedDeviceAndEveryRejectionCause) {
   EXPECT_EQ(m.poses_rejected_not_pinned, 1);
   EXPECT_EQ(m.poses_rejected_no_identity, 2);
   EXPECT_EQ(m.poses_rejected_version, 2);
+}
+
+TEST(PoseSourceReceiver, ASceneReleasesAfterItsWatchdogRampAndChecksItsWorkspace) {
+  const SceneConfig config = LoadSceneConfig(HAPTICS_CONFIG_DIR "/box_on_box.yaml");
+  const PoseSourceOptions o = MakePoseSourceOptions(config, PoseSourcePin{});
+  // watchdog 50 ms + ramp 50 ms + two 1 ms periods (config/box_on_box.yaml).
+  EXPECT_NEAR(o.release_after_s, 0.102, 1e-12);
+  EXPECT_EQ(o.workspace_min, Vector3(-0.1, -0.1, -0.07));
+  EXPECT_EQ(o.workspace_max, Vector3(0.1, 0.1, 0.07));
+  EXPECT_FALSE(o.pin.active());
 }
 
 }  // namespace
