@@ -27,6 +27,11 @@ ROOT="$(cd "$HERE/../.." && pwd)"
 scenario="$1" bin="$2" work="$3"
 rm -rf "$work" && mkdir -p "$work"
 config="$ROOT/config/box_on_box.yaml"
+# PD_E2E_TIMING_RELAXED (scripts/test_sanitize.sh): a sanitized server cannot
+# keep up with every pose, so superseded poses are tolerated there; every
+# source-lock check still applies.
+superseded=0.2
+[[ -n "${PD_E2E_TIMING_RELAXED:-}" ]] && superseded=0.98
 
 fail() { echo "run_pose_source_e2e[$scenario]: FAIL: $*" >&2; exit 1; }
 # key=value from the server's summary line.
@@ -76,7 +81,7 @@ case "$scenario" in
     sim=$!
     replay_rc=0
     "$bin/probe_replay" --trajectory "$ROOT/probes/trajectories/box_on_box.csv" --out "$work/result.csv" \
-      --summary "$work/summary.json" --start-delay 20 --realtime --max-superseded 0.2 \
+      --summary "$work/summary.json" --start-delay 20 --realtime --max-superseded "$superseded" \
       --max-force 7 >"$work/replay.out" 2>"$work/replay.err" || replay_rc=$?
     wait "$sim" || fail "probe_sim failed: $(cat "$work/sim.out")"
     kill -INT "$recorder"
@@ -121,7 +126,7 @@ case "$scenario" in
     sleep 0.5  # A silent for longer than watchdog timeout + ramp (102 ms)
     replay_rc=0
     "$bin/probe_replay" --trajectory "$work/short.csv" --out "$work/result.csv" --summary "$work/summary.json" \
-      --start-delay 20 --realtime --max-superseded 0.2 --max-force 7 >"$work/replay.out" 2>&1 || replay_rc=$?
+      --start-delay 20 --realtime --max-superseded "$superseded" --max-force 7 >"$work/replay.out" 2>&1 || replay_rc=$?
     stop_server
     cat "$work/replay.out"
     ((replay_rc == 0)) || fail "the replay taking over after A stopped failed (exit $replay_rc)"
@@ -168,7 +173,7 @@ case "$scenario" in
     sleep 0.3
     replay_rc=0
     "$bin/probe_replay" --trajectory "$work/short.csv" --summary "$work/summary.json" --session 0x7e57 \
-      --start-delay 20 --realtime --max-superseded 0.2 --max-force 7 >"$work/replay.out" 2>&1 || replay_rc=$?
+      --start-delay 20 --realtime --max-superseded "$superseded" --max-force 7 >"$work/replay.out" 2>&1 || replay_rc=$?
     wait "$sim" || fail "probe_sim failed"
     stop_server
     cat "$work/replay.out"
