@@ -21,6 +21,10 @@ class EngageEnvelope {
   // the scale and ORs kFlagSoftEngage / kFlagWatchdog into *flags.
   double Update(double t, bool fresh_pose, int32_t* flags);
 
+  // Back to not engaged: the next fresh pose starts the soft engage from
+  // zero (a new device stream taking over must not inherit any force).
+  void Restart() { engaged_ = false; watchdog_ = false; scale_ = 0.0; }
+
   double scale() const { return scale_; }
   bool engaged() const { return engaged_; }        // a valid pose has been seen
   bool watchdog_active() const { return watchdog_; }

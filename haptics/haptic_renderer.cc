@@ -19,13 +19,20 @@ HapticRenderer::HapticRenderer(const SceneConfig& config, const SceneModels& mod
 
 const WrenchOutput& HapticRenderer::Tick(double t, const PoseSample* pose) {
   const auto t_start = std::chrono::steady_clock::now();
-  const bool was_engaged = envelope_.engaged();
+  bool was_engaged = envelope_.engaged();
   int32_t flags = 0;
 
   bool fresh = false;
   if (pose != nullptr && validator_.Accept(*pose)) {
     fresh = true;
     const PoseSample& good = validator_.last_good();
+    if (was_engaged && good.session != output_.pose_session) {
+      // Another device stream took over (pose_source_lock.h): engage afresh,
+      // tool at its handle, force from zero.
+      envelope_.Restart();
+      was_engaged = false;
+      ++source_changes_;
+    }
     device_.X_W = Isometry3::Identity();
     device_.X_W.linear() = good.q_WD.toRotationMatrix();
     device_.X_W.translation() = good.p_WD;
@@ -36,6 +43,7 @@ const WrenchOutput& HapticRenderer::Tick(double t, const PoseSample* pose) {
     }
     output_.pose_seq = good.seq;
     output_.pose_utime = good.utime;
+    output_.pose_session = good.session;
   }
   if (!fresh) {
     flags |= kFlagStaleInput;
@@ -91,6 +99,7 @@ RendererCounts HapticRenderer::counts() const {
   c.tool_nonfinite = tool_.nonfinite_steps();
   c.limiter = limiter_.counts();
   c.watchdog_trips = envelope_.watchdog_trips();
+  c.source_changes = source_changes_;
   return c;
 }
 

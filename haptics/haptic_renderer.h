@@ -7,8 +7,9 @@
 //   4. implicit step of the tool under coupling + contact;
 //   5. coupling reaction on the device at the new tool state;
 //   6. conditioning (limits, rate, NaN guard).
-// The tool appears at the device pose with the first valid pose. Until then
-// the output is zero with pose_seq -1. No allocation per tick once the PD
+// The tool appears at the device pose with the first valid pose, and again
+// (force ramping up from zero) when a pose of another sender session arrives.
+// Until then the output is zero with pose_seq -1. No allocation per tick once the PD
 // solvers' scratch has grown.
 #include <cstdint>
 
@@ -35,6 +36,7 @@ struct RendererCounts {
   int64_t tool_nonfinite = 0;   // tool steps that went non-finite (tool stopped)
   LimiterCounts limiter;
   int64_t watchdog_trips = 0;
+  int64_t source_changes = 0;   // valid poses of a new sender session: re-engaged from zero
 };
 
 class HapticRenderer {
@@ -73,6 +75,7 @@ class HapticRenderer {
   WrenchOutput output_;
   int64_t stale_ticks_ = 0;
   int64_t pd_invalid_ticks_ = 0;
+  int64_t source_changes_ = 0;
 };
 
 }  // namespace haptics

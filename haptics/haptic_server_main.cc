@@ -2,6 +2,7 @@
 //
 //   haptic_server --config FILE [--lcm-url URL] [--cache-dir DIR] [--duration S] [--check]
 //                 [--timing-log FILE [--timing-log-ticks N]]
+//                 [--accept-session ID] [--accept-device NAME]
 //
 // Receives probe poses (haptics_msgs::probe_pose_t) on the pose channel,
 // renders contact with the scene through a virtual coupling at the servo
@@ -9,6 +10,12 @@
 // haptics_msgs::server_status_t on the status channel at ~10 Hz. Channels,
 // rate and gains come from the config file (see config/box_on_box.yaml).
 // Logs go to stderr; at exit one summary line goes to stdout.
+// One device, one stream (haptics/pose_source_lock.h): the server renders the
+// first sender (probe_pose_t.sender_session + sender_device) whose pose is
+// valid and rejects every other sender while that stream is alive; when it
+// has been silent for the watchdog timeout plus the ramp, the next valid
+// sender takes over. --accept-session / --accept-device (or lcm.accept_session
+// / lcm.accept_device in the config) admit only that sender.
 // --timing-log writes one CSV row per tick (period, compute time, contacts,
 // flags, deadline miss) after the loop stops, from a buffer of N records
 // allocated at start-up (haptics::TickLog): no allocation or file I/O in the
@@ -25,12 +32,14 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "haptics/build_scene.h"
 #include "haptics/haptic_renderer.h"
@@ -56,17 +65,29 @@ struct Options {
   std::string log_level = "info";
   std::string timing_log;             // empty: no per-tick log
   int64_t timing_log_ticks = 600000;  // records preallocated (10 min at 1 kHz)
+  std::string accept_session;         // overrides lcm.accept_session
+  std::string accept_device;          // overrides lcm.accept_device
 };
 
+// A device name as one key=value token: quoted, anything but [A-Za-z0-9_.-] as '?'.
+std::string DeviceToken(std::string_view name) {
+  std::string t = "'";
+  for (char c : name) t += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-') ? c : '?';
+  return t + "'";
+}
+
 std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCounts& rx) {
-  char line[768];
+  char line[1280];
   std::snprintf(line, sizeof(line),
                 "haptic_server summary: ticks=%lld elapsed_s=%.3f rate_hz=%.1f deadline_misses=%lld "
                 "jitter_p99_us=%.1f compute_p99_us=%.1f compute_max_us=%.1f poses_received=%lld "
                 "poses_rejected=%lld poses_dropped=%lld messages_malformed=%lld "
                 "poses_out_of_order=%lld pose_seq_skipped=%lld pose_time_backwards=%lld "
                 "force_saturations=%lld rate_limited=%lld watchdog_trips=%lld pd_invalid=%lld "
-                "nonfinite_outputs=%lld realtime=%d pose_wait_p50_us=%.1f pose_wait_p99_us=%.1f",
+                "nonfinite_outputs=%lld realtime=%d pose_wait_p50_us=%.1f pose_wait_p99_us=%.1f "
+                "source_session=%s source_device=%s source_locks=%lld source_changes=%lld "
+                "poses_rejected_other_sender=%lld poses_rejected_not_pinned=%lld "
+                "poses_rejected_no_identity=%lld poses_rejected_version=%lld senders_seen=%lld",
                 static_cast<long long>(s.ticks), s.elapsed_s, s.achieved_rate_hz,
                 static_cast<long long>(s.deadline_misses), s.jitter_p99_us, s.compute_p99_us,
                 s.compute_max_us, static_cast<long long>(rx.received),
@@ -79,7 +100,16 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 static_cast<long long>(s.renderer.watchdog_trips),
                 static_cast<long long>(s.renderer.pd_invalid),
                 static_cast<long long>(s.renderer.limiter.nonfinite), s.realtime ? 1 : 0,
-                s.pose_wait_p50_us, s.pose_wait_p99_us);
+                s.pose_wait_p50_us, s.pose_wait_p99_us,
+                haptics_msgs::FormatSession(rx.source.source.session).c_str(),
+                DeviceToken(rx.source.source.device_name()).c_str(),
+                static_cast<long long>(rx.source.locks),
+                static_cast<long long>(s.renderer.source_changes),
+                static_cast<long long>(rx.source_rejected.other_sender),
+                static_cast<long long>(rx.source_rejected.not_pinned),
+                static_cast<long long>(rx.source_rejected.no_identity),
+                static_cast<long long>(rx.wrong_version),
+                static_cast<long long>(rx.source.senders_seen));
   return line;
 }
 
@@ -128,7 +158,29 @@ int Serve(const Options& opt, sigset_t* signals) {
   }
 
   haptics::LatestValue<haptics::PoseSample> poses;
-  haptics::PoseReceiver receiver(&rx, config.lcm.pose_channel, &poses);
+  haptics::PoseSourcePin pin;
+  pin.session = config.lcm.accept_session;
+  pin.device = config.lcm.accept_device;
+  if (!opt.accept_session.empty() && !haptics_msgs::ParseSession(opt.accept_session, &pin.session)) {
+    std::fprintf(stderr,
+                 "haptic_server: --accept-session: '%s' is not a non-zero 64-bit session id "
+                 "(0x-prefixed hex or decimal)\n",
+                 opt.accept_session.c_str());
+    return kExitConfig;
+  }
+  if (!opt.accept_device.empty()) pin.device = opt.accept_device;
+  if (pin.device.size() > haptics_msgs::kMaxDeviceNameBytes) {
+    std::fprintf(stderr, "haptic_server: --accept-device: '%s' is longer than %zu bytes\n",
+                 pin.device.c_str(), haptics_msgs::kMaxDeviceNameBytes);
+    return kExitConfig;
+  }
+  const haptics::PoseSourceOptions source_options = haptics::MakePoseSourceOptions(config, pin);
+  spdlog::info("pose source: {}; another sender may take over after {:.0f} ms of silence",
+               pin.active() ? "only session " + (pin.session != 0 ? haptics_msgs::FormatSession(pin.session) : "any") +
+                                  ", device " + (pin.device.empty() ? "any" : "'" + pin.device + "'")
+                            : "first valid sender",
+               1e3 * source_options.release_after_s);
+  haptics::PoseReceiver receiver(&rx, config.lcm.pose_channel, &poses, source_options);
   haptics::HapticRenderer renderer(config, models);
   haptics::LcmWrenchPublisher sink(&tx, config.lcm.wrench_channel);
   haptics::ServoLoopOptions loop_options;
@@ -184,9 +236,13 @@ int Serve(const Options& opt, sigset_t* signals) {
       if (now_us - last_log_us >= 5'000'000) {
         last_log_us = now_us;
         spdlog::info("ticks {} rate {:.1f} Hz jitter p99 {:.1f} us compute p99 {:.1f} us misses {} "
-                     "poses {} rejected {}",
+                     "poses {} rejected {} (other senders {}) source {} '{}'{}",
                      msg.tick_count, msg.achieved_rate_hz, msg.period_jitter_p99_us,
-                     msg.compute_p99_us, msg.deadline_misses, msg.poses_received, msg.poses_rejected);
+                     msg.compute_p99_us, msg.deadline_misses, msg.poses_received, msg.poses_rejected,
+                     msg.poses_rejected_other_sender + msg.poses_rejected_not_pinned +
+                         msg.poses_rejected_no_identity + msg.poses_rejected_version,
+                     haptics_msgs::FormatSession(msg.source_session), msg.source_device,
+                     msg.source_alive ? "" : " (silent)");
       }
     }
     if (opt.duration_s > 0.0 && haptics::MonotonicMicros() - start_us >= opt.duration_s * 1e6) break;
@@ -230,6 +286,11 @@ int main(int argc, char** argv) {
                  "records preallocated for --timing-log; later ticks are counted, not stored")
       ->check(CLI::Range(int64_t{1}, int64_t{100'000'000}))
       ->capture_default_str();
+  app.add_option("--accept-session", opt.accept_session,
+                 "render only poses of this sender session (0x-prefixed hex or decimal; "
+                 "overrides lcm.accept_session)");
+  app.add_option("--accept-device", opt.accept_device,
+                 "render only poses of this sender device name (overrides lcm.accept_device)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

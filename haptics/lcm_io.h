@@ -2,8 +2,10 @@
 // LCM transport of the server (not in haptics_core, which stays LCM-free):
 //  - PoseReceiver: a thread running lcm.handleTimeout() that decodes
 //    probe_pose_t itself from the raw buffer (so undecodable messages are
-//    counted, never fatal) and hands the newest pose to the servo loop
-//    through a LatestValue (lock-free triple buffer);
+//    counted, never fatal), passes only the locked sender's stream
+//    (pose_source_lock.h; others are counted and logged once per sender)
+//    and hands the newest pose to the servo loop through a LatestValue
+//    (lock-free triple buffer);
 //  - LcmWrenchPublisher: encodes wrench_t into a preallocated buffer and
 //    publishes the bytes from the loop thread (the templated LCM::publish
 //    allocates per call; the raw one does not, and for a short message udpm
@@ -12,14 +14,18 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include <atomic>
+#include <limits>
 #include <cstdint>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "haptics/latest_value.h"
+#include "haptics/scene_config.h"
 #include "haptics/pose_sample.h"
 #include "haptics/pose_sequence.h"
+#include "haptics/pose_source_lock.h"
+#include "haptics/pose_validation.h"
 #include "haptics/servo_loop.h"
 #include "haptics/wrench_output.h"
 #include "haptics_msgs/probe_pose_t.hpp"
@@ -34,20 +40,52 @@ int64_t MonotonicMicros();
 // A decoded probe pose as a PoseSample (receive_time_ns left for the caller).
 PoseSample ToPoseSample(const haptics_msgs::probe_pose_t& msg);
 
+// The pose source as the status reports it.
+struct PoseSourceStatus {
+  SenderId source;        // the locked sender (session 0: none yet)
+  bool alive = false;     // its stream is within the release time
+  bool pinned = false;    // a pin restricts the senders
+  int64_t locks = 0;      // streams locked so far (1 + takeovers)
+  int64_t last_rejected_session = 0;  // sender of the latest rejected pose (0: none)
+  int64_t senders_seen = 0;
+};
+
 struct ReceiverCounts {
-  int64_t received = 0;   // decoded poses handed to the loop
+  int64_t received = 0;   // decoded poses of the locked stream handed to the loop
   int64_t malformed = 0;  // undecodable messages on the pose channel
   int64_t dropped = 0;    // poses superseded before the loop took them
-  // Order of the decoded poses (pose_sequence.h); counted, still rendered.
+  // Order of the locked stream's poses (pose_sequence.h); counted, still
+  // rendered. Restarted when another sender takes over.
   int64_t out_of_order = 0;    // seq not above the previous pose's
   int64_t seq_skipped = 0;     // seq numbers jumped over (saturating)
   int64_t time_backwards = 0;  // utime below the previous pose's
+  // Decoded poses not handed to the loop, by cause.
+  SourceRejectionCounts source_rejected;  // other sender, not pinned, no identity
+  int64_t wrong_version = 0;   // probe_pose_t of another version (version 1: no identity)
+  PoseSourceStatus source;
+  int64_t rejected_total() const { return source_rejected.total() + wrong_version; }
 };
+
+// How the receiver picks the one stream it passes on.
+struct PoseSourceOptions {
+  // A locked stream silent this long may be taken over (s): the watchdog
+  // timeout plus its ramp, so that the force has gone to zero.
+  double release_after_s = 0.1;
+  PoseSourcePin pin;
+  // Only a pose valid by these bounds can lock a sender (PoseValidator::Check).
+  Vector3 workspace_min = Vector3::Constant(-std::numeric_limits<double>::infinity());
+  Vector3 workspace_max = Vector3::Constant(std::numeric_limits<double>::infinity());
+};
+
+// The receiver options of a scene: release after servo.watchdog_timeout_s +
+// servo.watchdog_ramp_s + two servo periods, the device workspace, and `pin`.
+PoseSourceOptions MakePoseSourceOptions(const SceneConfig& config, PoseSourcePin pin);
 
 class PoseReceiver {
  public:
   // Subscribes to `channel` on *lcm. Both pointees must outlive this.
-  PoseReceiver(lcm::LCM* lcm, std::string channel, LatestValue<PoseSample>* out);
+  PoseReceiver(lcm::LCM* lcm, std::string channel, LatestValue<PoseSample>* out,
+               PoseSourceOptions options = {});
   ~PoseReceiver();
   PoseReceiver(const PoseReceiver&) = delete;
   PoseReceiver& operator=(const PoseReceiver&) = delete;
@@ -57,9 +95,12 @@ class PoseReceiver {
   void StartThread();
   void StopThread();
 
-  // One raw message as it came off the wire.
-  void OnMessage(const void* data, int size);
+  // One raw message as it came off the wire (receive_ns: CLOCK_MONOTONIC,
+  // 0 = now).
+  void OnMessage(const void* data, int size, int64_t receive_ns = 0);
 
+  // Any thread (the source snapshot is read through a triple buffer whose
+  // one reader is the caller: call it from one thread only).
   ReceiverCounts counts() const;
 
  private:
@@ -71,9 +112,22 @@ class PoseReceiver {
   lcm::Subscription* subscription_ = nullptr;
   std::thread thread_;
   std::atomic<bool> stop_{false};
-  PoseSequenceMonitor sequence_;  // receive thread only
+  void Reject(SourceDecision why, int64_t session);  // counts one rejected pose
+  void PublishSourceStatus();
+
+  // Receive thread only:
+  PoseSequenceMonitor sequence_;
+  PoseSourceLock lock_;
+  PoseValidator validator_;
+  bool logged_version_ = false, logged_table_full_ = false;
+  // Shared with counts():
   std::atomic<int64_t> received_{0}, malformed_{0}, dropped_{0};
   std::atomic<int64_t> out_of_order_{0}, seq_skipped_{0}, time_backwards_{0};
+  std::atomic<int64_t> other_sender_{0}, not_pinned_{0}, no_identity_{0}, wrong_version_{0};
+  std::atomic<int64_t> last_valid_ns_{0}, last_rejected_session_{0};
+  int64_t release_after_ns_;
+  mutable LatestValue<PoseSourceStatus> source_status_;  // written on lock changes, read by counts()
+  mutable PoseSourceStatus source_snapshot_;        // the reader's copy
 };
 
 class LcmWrenchPublisher final : public WrenchSink {

@@ -6,6 +6,7 @@
 
 #include "haptics/shape_config_reader.h"
 #include "haptics/yaml_reader.h"
+#include "msgs/sender_identity.h"
 
 namespace haptics {
 namespace {
@@ -186,6 +187,13 @@ LcmConfig ReadLcm(const YamlMap& m) {
                                              *values[j] + "')");
     }
   }
+  if (m.Has("accept_session") && !haptics_msgs::ParseSession(m.String("accept_session"), &l.accept_session))
+    m.source().Fail(m.Path("accept_session"),
+                    "must be a non-zero 64-bit session id, 0x-prefixed hex or decimal; got '" +
+                        m.String("accept_session") + "'");
+  l.accept_device = m.StringOr("accept_device", "");
+  if (l.accept_device.size() > haptics_msgs::kMaxDeviceNameBytes)
+    m.source().Fail(m.Path("accept_device"), "must be at most 64 bytes (probe_pose_t.sender_device)");
   m.WarnUnknownKeys();
   return l;
 }

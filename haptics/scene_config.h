@@ -124,6 +124,10 @@ struct LcmConfig {
   std::string pose_channel = "PROBE_POSE";
   std::string wrench_channel = "HAPTIC_WRENCH";
   std::string status_channel = "HAPTIC_STATUS";
+  // Pin of the pose source (pose_source_lock.h): render only poses from this
+  // sender session (0: any) and/or device name (empty: any).
+  int64_t accept_session = 0;
+  std::string accept_device;
 };
 
 struct SceneConfig {

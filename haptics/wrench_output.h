@@ -21,6 +21,7 @@ struct WrenchOutput {
   int64_t tick = 0;         // server tick number
   int64_t pose_seq = -1;    // seq of the newest accepted pose (-1: none yet)
   int64_t pose_utime = 0;   // its utime, echoed for round-trip timing (us)
+  int64_t pose_session = 0; // its sender session: whose stream is rendered (0: none yet)
   // On the device, at the device/tool reference point, in W: the virtual
   // coupling's reaction after conditioning.
   Wrench wrench;

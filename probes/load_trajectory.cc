@@ -5,8 +5,8 @@
 
 namespace probes {
 
-Trajectory LoadTrajectory(const std::string& path, const std::string& pose_channel) {
-  if (IsLcmLogFile(path)) return ReadTrajectoryLcmLog(path, pose_channel);
+Trajectory LoadTrajectory(const std::string& path, const std::string& pose_channel, int64_t session) {
+  if (IsLcmLogFile(path)) return ReadTrajectoryLcmLog(path, pose_channel, session);
   return ReadTrajectoryCsv(path);
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // Receives the server's wrench and status messages for probe_replay on the
 // LCM handler thread: matches each wrench to the pose it answers, keeps the
-// latest status and notes that the server is up. Subscribes with
+// latest status and notes that the server is up. While the replay is
+// sending, a status that names this replay's session as the last rejected
+// sender, or another sender as the pose source, is counted: the server is
+// not rendering us (probe_replay fails the run). Subscribes with
 // subscribeFunction and decodes itself: LCM 1.3.1's member-function
 // subscriptions crash in sanitizer builds (PD_SANITIZE).
 #include <atomic>
@@ -12,6 +15,7 @@
 
 #include "haptics_msgs/server_status_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
+#include "msgs/sender_identity.h"
 #include "probes/mono_clock.h"
 #include "probes/seq_matcher.h"
 
@@ -32,6 +36,7 @@ class ReplayListener {
     WrenchAnswer a;
     a.pose_seq = msg.pose_seq;
     a.pose_utime = msg.pose_utime;
+    a.pose_session = msg.pose_session;
     for (int i = 0; i < 3; ++i) {
       a.force[i] = msg.force[i];
       a.torque[i] = msg.torque[i];
@@ -49,10 +54,22 @@ class ReplayListener {
     if (matcher_->Match(a, receive_us) == SeqMatcher::Outcome::kFirstAnswer) ++first_answers_;
   }
 
-  void HandleStatus(const haptics_msgs::server_status_t& msg) {
+  // How long after our first pose a status may still show the previous
+  // source (it may have been put together just before our pose arrived).
+  static constexpr int64_t kStatusSettleUs = 20'000;
+
+  void HandleStatus(const haptics_msgs::server_status_t& msg, int64_t receive_us = MonotonicUs()) {
     server_seen_ = true;
     std::lock_guard<std::mutex> lock(mutex_);
     last_status_ = msg;
+    if (!matcher_->Sending(receive_us, kStatusSettleUs)) return;
+    if (msg.last_rejected_session == matcher_->session()) ++statuses_rejecting_us_;
+    if (msg.source_session != matcher_->session()) {
+      if (statuses_other_source_++ == 0) {
+        other_source_session_ = msg.source_session;
+        other_source_device_ = msg.source_device;
+      }
+    }
   }
 
   // Guards the matcher: the sender thread marks poses sent under it.
@@ -63,6 +80,20 @@ class ReplayListener {
   int64_t wrenches_missed() {
     std::lock_guard<std::mutex> lock(mutex_);
     return wrenches_missed_;
+  }
+  // Statuses received while sending that say our poses were rejected, or
+  // that another sender (first one: other_source_*) is the pose source.
+  int64_t statuses_rejecting_us() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return statuses_rejecting_us_;
+  }
+  int64_t statuses_other_source() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return statuses_other_source_;
+  }
+  std::string other_source() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return haptics_msgs::FormatSession(other_source_session_) + " '" + other_source_device_ + "'";
   }
   std::optional<haptics_msgs::server_status_t> last_status() {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -89,6 +120,9 @@ class ReplayListener {
   std::mutex mutex_;
   int64_t last_wrench_seq_ = -1;
   int64_t wrenches_missed_ = 0;
+  int64_t statuses_rejecting_us_ = 0, statuses_other_source_ = 0;
+  int64_t other_source_session_ = 0;
+  std::string other_source_device_;
   std::atomic<bool> server_seen_{false};
   std::atomic<int64_t> first_answers_{0};
   std::optional<haptics_msgs::server_status_t> last_status_;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "msgs/sender_identity.h"
+
 namespace probes {
 namespace {
 
@@ -91,6 +93,18 @@ std::vector<std::string> ReplaySummary::failures() const {
                      ? "tolerated: " + std::to_string(static_cast<int64_t>(allowed)) + ")"
                      : "none tolerated)"));
   }
+  if (other_stream_answers > 0) {
+    f.push_back(std::to_string(other_stream_answers) + " wrenches rendered another sender's stream (" +
+                other_stream + ") while this replay was sending");
+  }
+  if (statuses_rejecting_us > 0) {
+    f.push_back("the server rejected this replay's poses (" + std::to_string(statuses_rejecting_us) +
+                " status messages name our session as the last rejected sender)");
+  }
+  if (statuses_other_source > 0) {
+    f.push_back("the server's pose source was " + other_source + ", not this replay, in " +
+                std::to_string(statuses_other_source) + " status messages");
+  }
   if (non_finite_answers > 0) {
     f.push_back(std::to_string(non_finite_answers) + " answers with non-finite values");
   }
@@ -115,6 +129,17 @@ nlohmann::ordered_json ToJson(const haptics_msgs::server_status_t& st) {
           {"deadline_misses", st.deadline_misses},
           {"poses_received", st.poses_received},
           {"poses_rejected", st.poses_rejected},
+          {"source_session", haptics_msgs::FormatSession(st.source_session)},
+          {"source_device", st.source_device},
+          {"source_alive", st.source_alive},
+          {"source_pinned", st.source_pinned},
+          {"source_locks", st.source_locks},
+          {"poses_rejected_other_sender", st.poses_rejected_other_sender},
+          {"poses_rejected_not_pinned", st.poses_rejected_not_pinned},
+          {"poses_rejected_no_identity", st.poses_rejected_no_identity},
+          {"poses_rejected_version", st.poses_rejected_version},
+          {"last_rejected_session", haptics_msgs::FormatSession(st.last_rejected_session)},
+          {"senders_seen", st.senders_seen},
           {"poses_dropped", st.poses_dropped},
           {"messages_malformed", st.messages_malformed},
           {"force_saturations", st.force_saturations},
@@ -127,6 +152,12 @@ nlohmann::ordered_json ToJson(const ReplaySummary& s) {
   j["ok"] = s.ok();
   j["failures"] = s.failures();
   j["trajectory"] = s.trajectory;
+  j["sender"] = s.sender;
+  j["other_stream_answers"] = s.other_stream_answers;
+  j["other_stream"] = s.other_stream;
+  j["statuses_rejecting_us"] = s.statuses_rejecting_us;
+  j["statuses_other_source"] = s.statuses_other_source;
+  j["other_source"] = s.other_source;
   j["poses_planned"] = s.poses_planned;
   j["poses_sent"] = s.poses_sent;
   j["answered"] = s.answered;
@@ -160,16 +191,16 @@ std::string FormatSummary(const ReplaySummary& s) {
   char buf[1024];
   std::string out;
   std::snprintf(buf, sizeof(buf),
-                "probe_replay: %s: sent %lld/%lld poses in %.2f s, answered %lld, unanswered %lld"
+                "probe_replay: %s as %s: sent %lld/%lld poses in %.2f s, answered %lld, unanswered %lld"
                 " (superseded %lld, lost %lld, longest run %lld); other answers: repeat %lld,"
-                " before-first-pose %lld, foreign %lld\n",
-                s.trajectory.c_str(), static_cast<long long>(s.poses_sent),
+                " before-first-pose %lld, foreign %lld, other stream %lld\n",
+                s.trajectory.c_str(), s.sender.c_str(), static_cast<long long>(s.poses_sent),
                 static_cast<long long>(s.poses_planned), s.duration_s,
                 static_cast<long long>(s.answered), static_cast<long long>(s.unanswered),
                 static_cast<long long>(s.superseded), static_cast<long long>(s.lost),
                 static_cast<long long>(s.longest_unanswered_run),
                 static_cast<long long>(s.repeat_answers), static_cast<long long>(s.no_pose_answers),
-                static_cast<long long>(s.foreign_answers));
+                static_cast<long long>(s.foreign_answers), static_cast<long long>(s.other_stream_answers));
   out += buf;
   std::snprintf(buf, sizeof(buf),
                 "probe_replay: round trip us: p50 %.0f  p99 %.0f  max %.0f  mean %.1f  (n=%zu);"
@@ -191,7 +222,8 @@ std::string FormatSummary(const ReplaySummary& s) {
     std::snprintf(buf, sizeof(buf),
                   "probe_replay: server status: %lld ticks at %.1f Hz, deadline misses %lld, "
                   "poses received %lld rejected %lld dropped %lld, malformed %lld, "
-                  "saturations %lld, watchdog %lld, realtime %d\n",
+                  "saturations %lld, watchdog %lld, realtime %d; pose source %s '%s' (%s), "
+                  "rejected senders' poses %lld\n",
                   static_cast<long long>(st.tick_count), st.achieved_rate_hz,
                   static_cast<long long>(st.deadline_misses),
                   static_cast<long long>(st.poses_received),
@@ -199,7 +231,11 @@ std::string FormatSummary(const ReplaySummary& s) {
                   static_cast<long long>(st.poses_dropped),
                   static_cast<long long>(st.messages_malformed),
                   static_cast<long long>(st.force_saturations),
-                  static_cast<long long>(st.watchdog_trips), st.realtime);
+                  static_cast<long long>(st.watchdog_trips), st.realtime,
+                  haptics_msgs::FormatSession(st.source_session).c_str(), st.source_device.c_str(),
+                  st.source_alive ? "alive" : "silent",
+                  static_cast<long long>(st.poses_rejected_other_sender + st.poses_rejected_not_pinned +
+                                         st.poses_rejected_no_identity + st.poses_rejected_version));
     out += buf;
   } else {
     out += "probe_replay: no server status message received\n";

@@ -28,6 +28,13 @@ namespace probes {
 
 struct ReplaySummary {
   std::string trajectory;
+  std::string sender;                // our session and device name
+  // The server rendered someone else while we were sending (fail the run):
+  int64_t other_stream_answers = 0;  // wrenches answering another sender's live stream
+  std::string other_stream;          // the first such sender's session
+  int64_t statuses_rejecting_us = 0; // statuses whose last_rejected_session is ours
+  int64_t statuses_other_source = 0; // statuses whose pose source is another sender
+  std::string other_source;          // the first such source
   int64_t poses_planned = 0;
   int64_t poses_sent = 0;
   int64_t answered = 0;
@@ -54,7 +61,7 @@ struct ReplaySummary {
   double max_superseded_fraction = 0.0;  // of poses sent
 
   // Every pose sent and answered (up to the tolerances), all finite, none
-  // over the force limit.
+  // over the force limit, and the server rendering our stream throughout.
   bool ok() const;
   // The reasons ok() is false, one per entry; empty when ok.
   std::vector<std::string> failures() const;

@@ -4,7 +4,10 @@
 // with, so answers to another sender's poses (or to a previous run that
 // reused the same seq numbers) are never mistaken for ours. The first answer
 // to a pose gives its latency and wrench; later ones (a server re-answering
-// a stale pose) are only counted. Not thread-safe: the caller locks.
+// a stale pose) are only counted. Answers must also carry our sender
+// session (wrench_t.pose_session); a wrench that renders another sender's
+// live stream while we are sending means the server is not rendering us
+// (kOtherStream: probe_replay fails the run). Not thread-safe: the caller locks.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -15,6 +18,7 @@ namespace probes {
 struct WrenchAnswer {
   int64_t pose_seq = -1;
   int64_t pose_utime = 0;
+  int64_t pose_session = 0;            // sender session of the pose it answers (0: none)
   double force[3] = {0.0, 0.0, 0.0};   // f_W (N)
   double torque[3] = {0.0, 0.0, 0.0};  // tau_W (N·m)
   double penetration_depth = 0.0;      // m
@@ -38,10 +42,16 @@ class SeqMatcher {
     kRepeatAnswer,  // a further answer to an already answered pose
     kNoPose,        // pose_seq == -1: the server has not received a pose yet
     kForeign,       // seq not ours, not sent yet, or pose_utime does not match
+    kOtherStream,   // renders another sender's live stream while we are sending
   };
 
-  // Poses first_seq .. first_seq + count - 1 will be sent.
-  SeqMatcher(int64_t first_seq, size_t count);
+  // How long after our last pose another stream's answers are still held
+  // against us (us): less than any watchdog timeout, during which the
+  // server keeps our stream locked.
+  static constexpr int64_t kSendingTailUs = 20'000;
+
+  // Poses first_seq .. first_seq + count - 1 will be sent by `session`.
+  SeqMatcher(int64_t first_seq, size_t count, int64_t session = 0);
 
   // Records the send time (also the utime put in the pose). Throws
   // std::out_of_range for a seq outside the range given at construction.
@@ -49,7 +59,14 @@ class SeqMatcher {
 
   Outcome Match(const WrenchAnswer& answer, int64_t receive_us);
 
+  // True from our first send until kSendingTailUs after the last one
+  // (receive clock = send clock, CLOCK_MONOTONIC us), plus settle_us at the start.
+  bool Sending(int64_t now_us, int64_t settle_us = 0) const;
+
   const std::vector<PoseRecord>& records() const { return records_; }
+  int64_t session() const { return session_; }
+  int64_t other_stream_answers() const { return other_stream_answers_; }
+  int64_t other_stream_session() const { return other_stream_session_; }  // the first one seen
   int64_t first_seq() const { return first_seq_; }
   int64_t repeat_answers() const { return repeat_answers_; }
   int64_t no_pose_answers() const { return no_pose_answers_; }
@@ -57,7 +74,12 @@ class SeqMatcher {
 
  private:
   int64_t first_seq_;
+  int64_t session_;
   std::vector<PoseRecord> records_;
+  size_t sent_ = 0;
+  int64_t first_send_us_ = -1, last_send_us_ = -1;
+  int64_t other_stream_answers_ = 0;
+  int64_t other_stream_session_ = 0;
   int64_t repeat_answers_ = 0;
   int64_t no_pose_answers_ = 0;
   int64_t foreign_answers_ = 0;

@@ -7,6 +7,8 @@
 #include <map>
 
 #include "haptics_msgs/probe_pose_t.hpp"
+#include "haptics_msgs/probe_pose_v1_t.hpp"
+#include "msgs/sender_identity.h"
 #include "probes/input_error.h"
 
 namespace probes {
@@ -32,12 +34,15 @@ bool IsLcmLogFile(const std::string& path) {
   return word == kLcmLogMagic;
 }
 
-Trajectory ReadTrajectoryLcmLog(const std::string& path, const std::string& pose_channel) {
+Trajectory ReadTrajectoryLcmLog(const std::string& path, const std::string& pose_channel,
+                                int64_t session) {
   lcm::LogFile log(path, "r");
   if (!log.good()) throw InputError(path + ": cannot open LCM log");
 
   Trajectory trajectory;
+  const bool session_given = session != 0;
   std::map<std::string, int> other_channels;
+  std::map<int64_t, std::pair<std::string, int>> senders;  // session -> device, poses
   int64_t first_utime = 0;
   int64_t previous_utime = 0;
   int event_index = 0;
@@ -52,9 +57,25 @@ Trajectory ReadTrajectoryLcmLog(const std::string& path, const std::string& pose
                               pose_channel + "'";
     haptics_msgs::probe_pose_t msg{};
     if (msg.decode(e->data, 0, e->datalen) != e->datalen) {
+      haptics_msgs::probe_pose_v1_t v1{};
+      if (v1.decode(e->data, 0, e->datalen) == e->datalen) {
+        throw InputError(where + ": a probe_pose_t version 1 pose (no sender identity): the log "
+                         "predates version " + std::to_string(haptics_msgs::probe_pose_t::VERSION) +
+                         "; convert it with `probe_log_upgrade --in " + path +
+                         " --out NEW.lcmlog` (probes/README.md)");
+      }
       throw InputError(where + ": cannot decode as haptics_msgs.probe_pose_t (" +
                        std::to_string(e->datalen) + " bytes)");
     }
+    if (msg.version != haptics_msgs::probe_pose_t::VERSION) {
+      throw InputError(where + ": probe_pose_t version " + std::to_string(msg.version) +
+                       ", this build reads version " +
+                       std::to_string(haptics_msgs::probe_pose_t::VERSION));
+    }
+    auto& [device, count] = senders[msg.sender_session];
+    if (count++ == 0) device = msg.sender_device;
+    if (session == 0 && senders.size() == 1) session = msg.sender_session;
+    if (msg.sender_session != session) continue;
     if (!AllFinite(msg.position, 3) || !AllFinite(msg.orientation, 4) ||
         (msg.has_velocity &&
          (!AllFinite(msg.linear_velocity, 3) || !AllFinite(msg.angular_velocity, 3)))) {
@@ -87,6 +108,20 @@ Trajectory ReadTrajectoryLcmLog(const std::string& path, const std::string& pose
       for (int i = 0; i < 3; ++i) s.w_WP[i] = msg.angular_velocity[i];
     }
     trajectory.push_back(s);
+  }
+  if (senders.size() > 1 && !session_given) {
+    std::string list;
+    for (const auto& [id, who] : senders) {
+      list += (list.empty() ? "" : ", ") + haptics_msgs::FormatSession(id) + " '" + who.first + "' (" +
+              std::to_string(who.second) + " poses)";
+    }
+    throw InputError(path + ": pose channel '" + pose_channel + "' holds " + std::to_string(senders.size()) +
+                     " senders: " + list + "; choose one with --log-session");
+  }
+  if (trajectory.empty() && session_given && !senders.empty()) {
+    throw InputError(path + ": no pose of sender " + haptics_msgs::FormatSession(session) +
+                     " on pose channel '" + pose_channel + "' (" + std::to_string(senders.size()) +
+                     " other senders)");
   }
   if (trajectory.empty()) {
     std::string seen;

@@ -1,5 +1,6 @@
 // echo_server: the transport-only baseline. Answers every probe_pose_t with a
-// zero wrench_t that echoes pose seq and utime, with no computation, and
+// zero wrench_t that echoes pose seq, utime and sender session (any sender:
+// it has no source lock), with no computation, and
 // publishes a server_status_t at 10 Hz. The round trip measured against it is
 // the LCM/loopback share of the real server's latency.
 #include <CLI/CLI.hpp>
@@ -45,6 +46,9 @@ class Echo {
     w.seq = answered_;
     w.pose_seq = pose.seq;
     w.pose_utime = pose.utime;
+    w.pose_session = pose.sender_session;
+    last_session_ = pose.sender_session;
+    last_device_ = pose.sender_device;
     w.utime = probes::MonotonicUs();
     if (lcm_->publish(wrench_channel_, &w) == 0) ++answered_;
   }
@@ -52,6 +56,10 @@ class Echo {
   int64_t received() const { return received_; }
   int64_t answered() const { return answered_; }
   int64_t malformed() const { return malformed_; }
+  // The sender of the last pose answered: the echo has no source lock, its
+  // status names whoever it answered last.
+  int64_t last_session() const { return last_session_; }
+  const std::string& last_device() const { return last_device_; }
 
  private:
   lcm::LCM* lcm_;
@@ -59,6 +67,8 @@ class Echo {
   int64_t received_ = 0;
   int64_t answered_ = 0;
   int64_t malformed_ = 0;
+  int64_t last_session_ = 0;
+  std::string last_device_;
 };
 
 }  // namespace
@@ -111,6 +121,9 @@ int main(int argc, char** argv) {
       st.tick_count = echo.answered();
       st.poses_received = echo.received();
       st.messages_malformed = echo.malformed();
+      st.source_session = echo.last_session();
+      st.source_device = echo.last_device();
+      st.source_alive = echo.last_session() != 0;
       lcm.publish(status_channel, &st);
       ++status_count;
       next_status_us += 100'000;

@@ -1,7 +1,9 @@
 // probe_recorder: records the pose, wrench and status channels (or every
 // channel) to an LCM log file for a duration. `lcm-logger` does the same
 // job; this tool exists so that scripts need nothing beyond the build and so
-// that the channel set defaults to the server's.
+// that the channel set defaults to the server's. It also tells who sent the
+// poses: the summary lists each sender (probe_pose_t session and device) on
+// the pose channel, so a log that mixes two devices is visible at once.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -10,8 +12,12 @@
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "haptics_msgs/probe_pose_t.hpp"
+#include "haptics_msgs/probe_pose_v1_t.hpp"
+#include "msgs/sender_identity.h"
 #include "probes/channels.h"
 #include "probes/mono_clock.h"
 #include "probes/network_guard.h"
@@ -21,7 +27,7 @@ namespace {
 
 class Recorder {
  public:
-  explicit Recorder(lcm::LogFile* log) : log_(log) {}
+  Recorder(lcm::LogFile* log, std::string pose_channel) : log_(log), pose_channel_(std::move(pose_channel)) {}
 
   // A plain function (subscribeFunction): LCM 1.3.1's member-function
   // subscriptions crash in sanitizer builds.
@@ -42,6 +48,33 @@ class Recorder {
     }
     ++events_;
     ++per_channel_[channel];
+    if (channel == pose_channel_) CountSender(rbuf);
+  }
+
+  // "0x... 'device' N" per sender of the pose channel, in order of appearance.
+  std::string Senders() const {
+    std::string out;
+    for (const auto& [who, n] : senders_) out += (out.empty() ? "" : ", ") + who + " " + std::to_string(n);
+    if (old_version_ > 0) out += (out.empty() ? "" : ", ") + std::string("version 1 (no sender) ") + std::to_string(old_version_);
+    return out.empty() ? "none" : out;
+  }
+
+  void CountSender(const lcm::ReceiveBuffer* rbuf) {
+    const int size = static_cast<int>(rbuf->data_size);
+    haptics_msgs::probe_pose_t pose;
+    if (pose.decode(rbuf->data, 0, size) != size) {
+      haptics_msgs::probe_pose_v1_t v1;
+      if (v1.decode(rbuf->data, 0, size) == size) ++old_version_;
+      return;
+    }
+    const std::string who = haptics_msgs::FormatSession(pose.sender_session) + " '" + pose.sender_device + "'";
+    for (auto& [known, n] : senders_) {
+      if (known == who) {
+        ++n;
+        return;
+      }
+    }
+    senders_.emplace_back(who, 1);
   }
 
   int64_t events() const { return events_; }
@@ -53,6 +86,9 @@ class Recorder {
   int64_t events_ = 0;
   int64_t write_errors_ = 0;
   std::map<std::string, int64_t> per_channel_;
+  std::string pose_channel_;
+  std::vector<std::pair<std::string, int64_t>> senders_;  // few: a linear search
+  int64_t old_version_ = 0;
 };
 
 // LCM channel subscriptions are POSIX regular expressions: escape names so
@@ -75,12 +111,15 @@ int main(int argc, char** argv) {
                                        probes::kDefaultStatusChannel};
   double duration = 0.0;
   bool all = false;
+  std::string pose_channel = probes::kDefaultPoseChannel;
   app.add_option("--out", out_path, "LCM log file to write")->required();
   app.add_option("--lcm-url", url, "LCM URL (default: LCM's default, udpm)");
   app.add_option("--channels", channels, "channels to record")->capture_default_str();
   app.add_flag("--all-channels", all, "record every channel instead");
   app.add_option("--duration", duration, "stop after this many seconds (0: at SIGINT/SIGTERM)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
+  app.add_option("--pose-channel", pose_channel, "channel whose probe_pose_t senders are listed")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -100,7 +139,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   probes::InstallStopSignalHandlers();
-  Recorder recorder(&log);
+  Recorder recorder(&log, pose_channel);
   if (all) {
     lcm.subscribeFunction(".*", &Recorder::OnMessage, &recorder);
   } else {
@@ -125,7 +164,7 @@ int main(int argc, char** argv) {
   for (const auto& [channel, n] : recorder.per_channel()) {
     std::printf("; %s %lld", channel.c_str(), static_cast<long long>(n));
   }
-  std::printf("\n");
+  std::printf("; pose senders: %s\n", recorder.Senders().c_str());
   if (recorder.write_errors() > 0) {
     std::cerr << "probe_recorder: " << recorder.write_errors() << " events could not be written\n";
     return 1;

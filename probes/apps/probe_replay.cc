@@ -27,6 +27,7 @@
 #include "probes/replay_listener.h"
 #include "probes/replay_result_csv.h"
 #include "probes/replay_summary.h"
+#include "probes/sender.h"
 
 namespace {
 
@@ -41,7 +42,14 @@ The trajectory is a CSV (header time,x,y,z,qw,qx,qy,qz; time in s) or an LCM
 log (lcm-logger / probe_recorder; only --pose-channel events are used). Each
 pose is sent at start + (t - t_first) / rate-scale on CLOCK_MONOTONIC with
 seq = first-seq + index and utime = the send time in us. A wrench answers a
-pose when its pose_seq and pose_utime match; latency = receive - send time.
+pose when its pose_seq, pose_utime and pose_session match; latency = receive
+- send time.
+
+Every pose carries this replay's sender identity (--session, random by
+default, and --device). The run fails when the server renders another
+sender while this replay is sending: a wrench answering another sender's
+live stream, or a status naming this session as rejected or another sender
+as the pose source (haptic_server locks onto one sender at a time).
 
 A pose left unanswered while a later one was answered is "superseded" (the
 server took a newer pose in the same tick, or the datagram was lost on the
@@ -86,6 +94,7 @@ int main(int argc, char** argv) {
   int64_t first_seq = 0;
   bool realtime = false;
   int repeat = 1;
+  std::string session_text, device = "probe_replay", log_session_text;
 
   app.add_option("--trajectory", trajectory_path, "trajectory CSV or LCM log")
       ->required()->check(CLI::ExistingFile);
@@ -114,11 +123,21 @@ int main(int argc, char** argv) {
                  "send the trajectory this many times back to back, seq and time continuing "
                  "(soak runs)")
       ->capture_default_str()->check(CLI::Range(1, 100000));
+  app.add_option("--session", session_text,
+                 "sender session id (0x-prefixed hex or decimal, non-zero; default: random)");
+  app.add_option("--device", device, "sender device name")->capture_default_str();
+  app.add_option("--log-session", log_session_text,
+                 "for an LCM log holding several senders: replay this sender's poses");
   CLI11_PARSE(app, argc, argv);
 
   probes::Trajectory trajectory;
+  probes::Sender sender;
   try {
-    trajectory = probes::LoadTrajectory(trajectory_path, pose_channel);
+    sender = probes::MakeSender(session_text, device);
+    int64_t log_session = 0;
+    if (!log_session_text.empty() && !haptics_msgs::ParseSession(log_session_text, &log_session))
+      throw probes::InputError("--log-session: '" + log_session_text + "' is not a non-zero session id");
+    trajectory = probes::LoadTrajectory(trajectory_path, pose_channel, log_session);
     if (repeat > 1) trajectory = Repeated(trajectory, repeat);
     probes::RequireIsolatedNetworkForUdpm(url, "probe_replay");
   } catch (const std::exception& e) {
@@ -131,7 +150,8 @@ int main(int argc, char** argv) {
     std::cerr << "probe_replay: cannot initialise LCM with URL '" << url << "'\n";
     return kExitLcm;
   }
-  probes::SeqMatcher matcher(first_seq, trajectory.size());
+  std::cerr << "probe_replay: sender " << sender.Describe() << "\n";
+  probes::SeqMatcher matcher(first_seq, trajectory.size(), sender.session);
   probes::ReplayListener listener(&matcher);
   listener.Subscribe(&lcm, wrench_channel, status_channel);
 
@@ -178,7 +198,7 @@ int main(int argc, char** argv) {
       std::lock_guard<std::mutex> lock(listener.mutex());
       matcher.MarkSent(seq, send_us);
     }
-    haptics_msgs::probe_pose_t msg = probes::MakePoseMessage(trajectory[i], seq, send_us);
+    haptics_msgs::probe_pose_t msg = probes::MakePoseMessage(trajectory[i], seq, send_us, sender);
     if (lcm.publish(pose_channel, &msg) != 0) ++publish_failures;
   }
 
@@ -196,6 +216,12 @@ int main(int argc, char** argv) {
   probes::ReplaySummary summary = probes::Summarise(matcher.records(),
                                                     static_cast<int64_t>(trajectory.size()), limits);
   summary.trajectory = trajectory_path;
+  summary.sender = sender.Describe();
+  summary.other_stream_answers = matcher.other_stream_answers();
+  summary.other_stream = haptics_msgs::FormatSession(matcher.other_stream_session());
+  summary.statuses_rejecting_us = listener.statuses_rejecting_us();
+  summary.statuses_other_source = listener.statuses_other_source();
+  summary.other_source = listener.other_source();
   summary.repeat_answers = matcher.repeat_answers();
   summary.no_pose_answers = matcher.no_pose_answers();
   summary.foreign_answers = matcher.foreign_answers();

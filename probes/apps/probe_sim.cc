@@ -21,6 +21,7 @@
 #include "probes/network_guard.h"
 #include "probes/pose_message.h"
 #include "probes/realtime.h"
+#include "probes/sender.h"
 #include "probes/trajectory_csv.h"
 
 namespace {
@@ -40,7 +41,7 @@ void CopyIfGiven(const CLI::Option* opt, const std::vector<double>& from, std::a
 }
 
 int Publish(const probes::Trajectory& trajectory, const std::string& url,
-            const std::string& channel, int64_t first_seq, bool realtime) {
+            const std::string& channel, int64_t first_seq, bool realtime, const probes::Sender& sender) {
   probes::RequireIsolatedNetworkForUdpm(url, "probe_sim");
   lcm::LCM lcm(url);
   if (!lcm.good()) {
@@ -51,6 +52,7 @@ int Publish(const probes::Trajectory& trajectory, const std::string& url,
     std::string why;
     if (!probes::TryRealtime(80, &why)) std::cerr << "probe_sim: warning: " << why << "\n";
   }
+  std::fprintf(stderr, "probe_sim: sender %s\n", sender.Describe().c_str());
   // Absolute deadlines from one start time: lateness never accumulates.
   const int64_t start_ns = probes::MonotonicNs() + 5'000'000;
   const double t_first = trajectory.front().t;
@@ -61,14 +63,14 @@ int Publish(const probes::Trajectory& trajectory, const std::string& url,
     const int64_t now = probes::MonotonicNs();
     worst_late_ns = std::max(worst_late_ns, now - deadline);
     haptics_msgs::probe_pose_t msg =
-        probes::MakePoseMessage(trajectory[k], first_seq + static_cast<int64_t>(k), now / 1000);
+        probes::MakePoseMessage(trajectory[k], first_seq + static_cast<int64_t>(k), now / 1000, sender);
     if (lcm.publish(channel, &msg) != 0) {
       std::cerr << "probe_sim: publish failed on '" << channel << "' at seq " << msg.seq << "\n";
       return 2;
     }
   }
-  std::printf("probe_sim: published %zu poses on %s over %.3f s, worst lateness %.0f us\n",
-              trajectory.size(), channel.c_str(), trajectory.back().t - t_first,
+  std::printf("probe_sim: published %zu poses on %s as %s over %.3f s, worst lateness %.0f us\n",
+              trajectory.size(), channel.c_str(), sender.Describe().c_str(), trajectory.back().t - t_first,
               1e-3 * static_cast<double>(worst_late_ns));
   return 0;
 }
@@ -85,6 +87,7 @@ int main(int argc, char** argv) {
   double amplitude = 0, depth = 0, speed = 0, duration = 0, approach = 0, hold = 0, rate = 0;
   int64_t first_seq = 0;
   bool publish = false, realtime = false;
+  std::string session_text, device = "probe_sim";
 
   app.add_option("--params", params_file, "YAML file of motion parameters")->check(CLI::ExistingFile);
   auto* o_script = app.add_option("--script", script, "approach_and_press | slide | stir | insert_peg");
@@ -104,6 +107,9 @@ int main(int argc, char** argv) {
   app.add_option("--pose-channel", channel, "channel for probe_pose_t")->capture_default_str();
   app.add_option("--first-seq", first_seq, "seq of the first pose")->capture_default_str();
   app.add_flag("--realtime", realtime, "ask for SCHED_FIFO while publishing");
+  app.add_option("--session", session_text,
+                 "sender session id (0x-prefixed hex or decimal, non-zero; default: random)");
+  app.add_option("--device", device, "sender device name")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   probes::MotionParams params;
@@ -132,7 +138,8 @@ int main(int argc, char** argv) {
       std::printf("probe_sim: wrote %zu samples (%s, %.3f s at %.0f Hz) to %s\n", trajectory.size(),
                   params.script.c_str(), trajectory.back().t, params.rate_hz, csv_out.c_str());
     }
-    if (csv_out.empty() || publish) return Publish(trajectory, url, channel, first_seq, realtime);
+    const probes::Sender sender = probes::MakeSender(session_text, device);
+    if (csv_out.empty() || publish) return Publish(trajectory, url, channel, first_seq, realtime, sender);
     return 0;
   } catch (const probes::InputError& e) {
     std::cerr << "probe_sim: " << e.what() << "\n";

@@ -3,12 +3,14 @@
 // probe_pose_t decode the receive thread runs), the newest pose handed over
 // through the LatestValue, and a fresh haptics::HapticRenderer on the shipped
 // box_on_box scene ticking on it (validation, engage, PD contact, dynamics,
-// limits), as the servo loop does.
+// limits), as the servo loop does. The receiver's pose source lock is on
+// (any sender may be the first; others are rejected while it is alive).
 //
 // Input: repeated [n][n bytes] chunks, each one message; after each, one tick
 // (and a stale tick when n is odd). Contract: never a crash; every wrench
 // finite and within the device's force and torque limits; every undecodable
-// message counted as malformed, every decoded one as received.
+// message counted as malformed, every decoded one as received or as rejected
+// by the source lock (other sender, no identity, other version).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -45,7 +47,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static lcm::LCM lcm("memq://");  // in-process; OnMessage is called directly
   const Scene& scene = TheScene();
   haptics::LatestValue<haptics::PoseSample> poses;
-  haptics::PoseReceiver receiver(&lcm, "PROBE_POSE", &poses);
+  haptics::PoseReceiver receiver(&lcm, "PROBE_POSE", &poses,
+                                 haptics::MakePoseSourceOptions(scene.config, haptics::PoseSourcePin{}));
   haptics::HapticRenderer renderer(scene.config, scene.models);
   const double max_force = scene.config.device.max_force * (1.0 + 1e-9);
   const double max_torque = scene.config.device.max_torque * (1.0 + 1e-9);
@@ -72,7 +75,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
   }
   const haptics::ReceiverCounts counts = receiver.counts();
-  if (counts.received + counts.malformed != messages)
-    pd_fuzz::Violation("received + malformed != messages handled");
+  if (counts.received + counts.malformed + counts.rejected_total() != messages)
+    pd_fuzz::Violation("received + malformed + rejected != messages handled");
   return 0;
 }

@@ -150,6 +150,40 @@ TEST(HapticRenderer, WatchdogRampsTheOutputToZero) {
   EXPECT_EQ(rig.renderer->counts().watchdog_trips, 1);
 }
 
+TEST(HapticRenderer, ANewSenderSessionReEngagesFromZeroWithTheToolAtItsHandle) {
+  SceneConfig config = test::BoxOnBoxConfig();
+  config.servo.soft_engage_s = 0.1;
+  Rig rig(config);
+  auto from = [&](int64_t session, const Vector3& p) {
+    PoseSample pose = MakePose(++rig.seq, p);
+    pose.session = session;
+    return rig.Tick(&pose);
+  };
+  for (int i = 0; i < 500; ++i) from(0xa, Vector3(0, 0, 0.003));  // A presses: about 5 N
+  ASSERT_GT(rig.renderer->output().wrench.f_W.z(), 3.0);
+  EXPECT_EQ(rig.renderer->output().pose_session, 0xa);
+  // A falls silent; the receiver hands B over only after the watchdog timeout
+  // plus the ramp (pose_source_lock.h), when the force is zero.
+  const int silent_ticks =
+      static_cast<int>((config.servo.watchdog_timeout_s + config.servo.watchdog_ramp_s) / kDt) + 2;
+  for (int i = 0; i < silent_ticks; ++i) rig.Tick(nullptr);
+  ASSERT_EQ(rig.renderer->output().wrench.f_W, Vector3::Zero());
+  // B's first pose, 5 cm away in free space: the tool appears at B's handle
+  // (not dragged over from A's), the force starts from zero.
+  const Vector3 p_B(0.05, -0.05, 0.04);
+  const WrenchOutput& first = from(0xb, p_B);
+  EXPECT_EQ(first.pose_session, 0xb);
+  EXPECT_TRUE(first.flags & kFlagSoftEngage);
+  EXPECT_FALSE(first.flags & kFlagForceSaturated);
+  EXPECT_LT(first.wrench.f_W.norm(), 1e-9);
+  EXPECT_LT((rig.renderer->tool().X_W.translation() - p_B).norm(), 1e-3);
+  double max_force = 0.0;
+  for (int i = 0; i < 300; ++i) max_force = std::max(max_force, from(0xb, p_B).wrench.f_W.norm());
+  EXPECT_LT(max_force, 0.5);  // free space, holding still
+  EXPECT_EQ(rig.renderer->counts().source_changes, 1);
+  EXPECT_EQ(rig.renderer->counts().limiter.saturated, 0);
+}
+
 TEST(HapticRenderer, UnverifiedPdRaisesTheFlag) {
   pd::PolyDepthOptions crippled;
   crippled.num_maximally_clear = 0;

@@ -10,6 +10,9 @@ namespace {
 
 haptics_msgs::probe_pose_t Pose(int64_t seq) {
   haptics_msgs::probe_pose_t m{};
+  m.version = haptics_msgs::probe_pose_t::VERSION;
+  m.sender_session = 0x5e55;
+  m.sender_device = "sigma7";
   m.utime = 1000 * seq;
   m.seq = seq;
   m.position[0] = 0.01;
@@ -46,6 +49,7 @@ TEST(PoseReceiver, DecodesPosesAndHandsOverTheNewest) {
   ASSERT_NE(p, nullptr);
   EXPECT_EQ(p->seq, 7);
   EXPECT_EQ(p->utime, 7000);
+  EXPECT_EQ(p->session, 0x5e55);
   EXPECT_EQ(p->p_WD, Vector3(0.01, -0.02, 0.03));
   EXPECT_EQ(p->q_WD.w(), 1.0);
   EXPECT_TRUE(p->has_velocity);
@@ -111,6 +115,7 @@ TEST(LcmWrenchPublisher, PublishesEveryFieldAndTheFlags) {
   out.tick = 42;
   out.pose_seq = 41;
   out.pose_utime = 123456;
+  out.pose_session = 0x5e55;
   out.wrench.f_W = Vector3(1, -2, 3);
   out.wrench.tau_W = Vector3(0.01, 0.02, -0.03);
   out.penetration_depth = 0.002;
@@ -125,6 +130,7 @@ TEST(LcmWrenchPublisher, PublishesEveryFieldAndTheFlags) {
   EXPECT_EQ(m.seq, 42);
   EXPECT_EQ(m.pose_seq, 41);
   EXPECT_EQ(m.pose_utime, 123456);
+  EXPECT_EQ(m.pose_session, 0x5e55);
   EXPECT_GE(m.utime, before);
   EXPECT_EQ(m.force[1], -2.0);
   EXPECT_EQ(m.torque[2], -0.03);

@@ -43,6 +43,9 @@ TEST(PoseSequence, ClassifiesDuplicatesSkipsAndTimeGoingBack) {
 
 void Publish(lcm::LCM* lcm, int64_t seq, int64_t utime) {
   haptics_msgs::probe_pose_t m{};
+  m.version = haptics_msgs::probe_pose_t::VERSION;
+  m.sender_session = 0x5e55;
+  m.sender_device = "test";
   m.seq = seq;
   m.utime = utime;
   m.orientation[0] = 1.0;

@@ -70,3 +70,68 @@ TEST(ReplayListener, WrenchIsMatchedToItsPose) {
 
 }  // namespace
 }  // namespace probes
+
+namespace probes {
+namespace {
+
+constexpr int64_t kOurs = 0x1111, kTheirs = 0x2222;
+
+haptics_msgs::wrench_t WrenchFor(int64_t session, int64_t seq, int64_t utime, int32_t flags = 0) {
+  haptics_msgs::wrench_t w{};
+  w.pose_session = session;
+  w.pose_seq = seq;
+  w.pose_utime = utime;
+  w.flags = flags;
+  return w;
+}
+
+TEST(ReplayListener, AnswersToAnotherSendersLiveStreamWhileSendingAreCounted) {
+  SeqMatcher matcher(0, 3, kOurs);
+  ReplayListener listener(&matcher);
+  // Before we send anything another stream is none of our business.
+  listener.HandleWrench(WrenchFor(kTheirs, 0, 100), 100);
+  EXPECT_EQ(matcher.other_stream_answers(), 0);
+  matcher.MarkSent(0, 1000);
+  // Same seq and utime as ours but another sender's session: not our answer.
+  listener.HandleWrench(WrenchFor(kTheirs, 0, 1000), 1100);
+  EXPECT_EQ(matcher.other_stream_answers(), 1);
+  EXPECT_EQ(matcher.other_stream_session(), kTheirs);
+  EXPECT_FALSE(matcher.records()[0].answered());
+  // A silent previous stream ramping down (watchdog) is not "rendering them".
+  listener.HandleWrench(WrenchFor(kTheirs, 5, 50, haptics_msgs::wrench_t::FLAG_WATCHDOG), 1200);
+  EXPECT_EQ(matcher.other_stream_answers(), 1);
+  listener.HandleWrench(WrenchFor(kOurs, 0, 1000), 1300);
+  EXPECT_TRUE(matcher.records()[0].answered());
+  matcher.MarkSent(1, 2000);
+  matcher.MarkSent(2, 3000);
+  // After our last pose, plus the tail, another sender may take over.
+  listener.HandleWrench(WrenchFor(kTheirs, 7, 7), 3000 + SeqMatcher::kSendingTailUs + 1);
+  EXPECT_EQ(matcher.other_stream_answers(), 1);
+}
+
+TEST(ReplayListener, StatusesThatShowUsRejectedOrAnotherSourceAreCounted) {
+  SeqMatcher matcher(0, 2, kOurs);
+  ReplayListener listener(&matcher);
+  haptics_msgs::server_status_t status{};
+  status.source_session = kTheirs;
+  status.source_device = "probe_sim";
+  status.last_rejected_session = kOurs;
+  listener.HandleStatus(status, 500);  // before sending: ignored
+  matcher.MarkSent(0, 1000);
+  listener.HandleStatus(status, 1000 + ReplayListener::kStatusSettleUs / 2);  // settling: ignored
+  EXPECT_EQ(listener.statuses_rejecting_us(), 0);
+  EXPECT_EQ(listener.statuses_other_source(), 0);
+  listener.HandleStatus(status, 1000 + ReplayListener::kStatusSettleUs + 1);
+  EXPECT_EQ(listener.statuses_rejecting_us(), 1);
+  EXPECT_EQ(listener.statuses_other_source(), 1);
+  EXPECT_EQ(listener.other_source(), "0x0000000000002222 'probe_sim'");
+  // Rendering us, someone else rejected: nothing counted.
+  status.source_session = kOurs;
+  status.last_rejected_session = kTheirs;
+  listener.HandleStatus(status, 1000 + ReplayListener::kStatusSettleUs + 2);
+  EXPECT_EQ(listener.statuses_rejecting_us(), 1);
+  EXPECT_EQ(listener.statuses_other_source(), 1);
+}
+
+}  // namespace
+}  // namespace probes

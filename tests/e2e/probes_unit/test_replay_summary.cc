@@ -88,6 +88,24 @@ TEST(ReplaySummary, NonFiniteAndOverLimitFail) {
   EXPECT_TRUE(Summarise(records, 2, {}).over_force_limit == 0);
 }
 
+TEST(ReplaySummary, AnotherSenderBeingRenderedFailsTheRunEvenWithEveryPoseAnswered) {
+  const std::vector<PoseRecord> records = {Answered(0, 100, 1.0), Answered(1, 300, 1.0)};
+  ReplaySummary s = Summarise(records, 2, Limits(5.0));
+  ASSERT_TRUE(s.ok());
+  s.other_stream_answers = 3;
+  s.other_stream = "0x0000000000002222";
+  s.statuses_rejecting_us = 1;
+  s.statuses_other_source = 2;
+  s.other_source = "0x0000000000002222 'probe_sim'";
+  EXPECT_FALSE(s.ok());
+  ASSERT_EQ(s.failures().size(), 3u);
+  EXPECT_NE(s.failures()[0].find("3 wrenches rendered another sender's stream (0x0000000000002222)"),
+            std::string::npos) << s.failures()[0];
+  EXPECT_NE(s.failures()[1].find("the server rejected this replay's poses"), std::string::npos);
+  EXPECT_NE(s.failures()[2].find("pose source was 0x0000000000002222 'probe_sim'"), std::string::npos);
+  EXPECT_EQ(ToJson(s)["other_stream_answers"], 3);
+}
+
 TEST(ReplaySummary, JsonHasNullLatencyWhenNothingAnswered) {
   PoseRecord r;
   r.send_us = 5;

@@ -7,9 +7,11 @@
 #include <vector>
 
 #include "haptics_msgs/probe_pose_t.hpp"
+#include "haptics_msgs/probe_pose_v1_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
 #include "probes/input_error.h"
 #include "probes/load_trajectory.h"
+#include "probes/log_upgrade.h"
 #include "probes/trajectory_lcm_log.h"
 #include "temp_file.h"
 
@@ -34,8 +36,12 @@ std::vector<uint8_t> Encode(const Msg& msg) {
   return buf;
 }
 
-haptics_msgs::probe_pose_t Pose(int64_t seq, int64_t utime, double z) {
+haptics_msgs::probe_pose_t Pose(int64_t seq, int64_t utime, double z, int64_t session = 0x5e55,
+                                const std::string& device = "sigma7") {
   haptics_msgs::probe_pose_t p{};
+  p.version = haptics_msgs::probe_pose_t::VERSION;
+  p.sender_session = session;
+  p.sender_device = device;
   p.seq = seq;
   p.utime = utime;
   p.position[2] = z;
@@ -105,6 +111,121 @@ TEST(TrajectoryLcmLog, NonIncreasingUtimeIsAnError) {
     WriteEvent(&log, "PROBE_POSE", Encode(Pose(2, 10, 0.1)));
   }
   EXPECT_THROW(ReadTrajectoryLcmLog(path, "PROBE_POSE"), InputError);
+}
+
+TEST(TrajectoryLcmLog, AVersionOneLogIsRejectedNamingTheConverter) {
+  const std::string path = ::testing::TempDir() + "probes_tests_v1.lcmlog";
+  {
+    lcm::LogFile log(path, "w");
+    haptics_msgs::probe_pose_v1_t old{};
+    old.seq = 1;
+    old.utime = 10;
+    old.orientation[0] = 1.0;
+    WriteEvent(&log, "PROBE_POSE", Encode(old));
+  }
+  try {
+    ReadTrajectoryLcmLog(path, "PROBE_POSE");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path + ": event 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("version 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("probe_log_upgrade"), std::string::npos) << what;
+  }
+}
+
+TEST(TrajectoryLcmLog, ALogOfTwoSendersNeedsOneChosen) {
+  const std::string path = ::testing::TempDir() + "probes_tests_two_senders.lcmlog";
+  {
+    lcm::LogFile log(path, "w");
+    // Interleaved, as a log recorded while two clients published looks.
+    for (int64_t k = 0; k < 4; ++k) {
+      WriteEvent(&log, "PROBE_POSE", Encode(Pose(k, 1000 * (k + 1), 0.01, 0xaaaa, "sigma7")));
+      WriteEvent(&log, "PROBE_POSE", Encode(Pose(k, 1000 * (k + 1) + 500, 0.05, 0xbbbb, "probe_sim")));
+    }
+  }
+  try {
+    ReadTrajectoryLcmLog(path, "PROBE_POSE");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("2 senders"), std::string::npos) << what;
+    EXPECT_NE(what.find("0x000000000000aaaa 'sigma7' (4 poses)"), std::string::npos) << what;
+    EXPECT_NE(what.find("0x000000000000bbbb 'probe_sim' (4 poses)"), std::string::npos) << what;
+    EXPECT_NE(what.find("--log-session"), std::string::npos) << what;
+  }
+  const Trajectory b = LoadTrajectory(path, "PROBE_POSE", 0xbbbb);
+  ASSERT_EQ(b.size(), 4u);
+  for (const PoseSample& s : b) EXPECT_DOUBLE_EQ(s.p_WP[2], 0.05);
+  EXPECT_DOUBLE_EQ(b[3].t, 0.003);
+  EXPECT_THROW(ReadTrajectoryLcmLog(path, "PROBE_POSE", 0xcccc), InputError);
+}
+
+TEST(LogUpgrade, AVersionOneLogConvertedReadsBackWithTheSameMotion) {
+  const std::string old_path = ::testing::TempDir() + "probes_tests_upgrade_v1.lcmlog";
+  const std::string new_path = ::testing::TempDir() + "probes_tests_upgrade_v2.lcmlog";
+  const std::vector<uint8_t> wrench_bytes = Encode(haptics_msgs::wrench_t{});
+  {
+    lcm::LogFile log(old_path, "w");
+    WriteEvent(&log, "LCM_SELF_TEST", {9, 8, 7});
+    for (int64_t k = 0; k < 3; ++k) {
+      haptics_msgs::probe_pose_v1_t old{};
+      old.seq = 10 + k;
+      old.utime = 2'000'000 + 1000 * k;
+      old.position[0] = 0.001 * k;
+      old.position[2] = 0.02;
+      old.orientation[0] = 1.0;
+      old.has_velocity = true;
+      old.linear_velocity[0] = 1.0;
+      WriteEvent(&log, "PROBE_POSE", Encode(old));
+      WriteEvent(&log, "HAPTIC_WRENCH", wrench_bytes);
+    }
+  }
+  EXPECT_THROW(ReadTrajectoryLcmLog(old_path, "PROBE_POSE"), InputError);
+  const LogUpgradeCounts n = UpgradePoseLog(old_path, new_path, "PROBE_POSE", MakeSender("0x1234", "old_rig"));
+  EXPECT_EQ(n.upgraded, 3);
+  EXPECT_EQ(n.already, 0);
+  EXPECT_EQ(n.copied, 4);
+  const Trajectory t = ReadTrajectoryLcmLog(new_path, "PROBE_POSE");
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_DOUBLE_EQ(t[2].t, 0.002);
+  EXPECT_DOUBLE_EQ(t[2].p_WP[0], 0.002);
+  EXPECT_DOUBLE_EQ(t[2].p_WP[2], 0.02);
+  EXPECT_DOUBLE_EQ(t[1].v_WP[0], 1.0);
+  // Identity on every pose; other events byte for byte.
+  lcm::LogFile log(new_path, "r");
+  int poses = 0, wrenches = 0;
+  for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
+    if (e->channel == "PROBE_POSE") {
+      haptics_msgs::probe_pose_t p{};
+      ASSERT_EQ(p.decode(e->data, 0, e->datalen), e->datalen);
+      EXPECT_EQ(p.version, int{haptics_msgs::probe_pose_t::VERSION});
+      EXPECT_EQ(p.sender_session, 0x1234);
+      EXPECT_EQ(p.sender_device, "old_rig");
+      EXPECT_EQ(p.seq, 10 + poses++);
+    } else if (e->channel == "HAPTIC_WRENCH") {
+      ++wrenches;
+      EXPECT_EQ(std::vector<uint8_t>(static_cast<const uint8_t*>(e->data),
+                                     static_cast<const uint8_t*>(e->data) + e->datalen),
+                wrench_bytes);
+    }
+  }
+  EXPECT_EQ(poses, 3);
+  EXPECT_EQ(wrenches, 3);
+}
+
+TEST(LogUpgrade, GarbageOnThePoseChannelIsAnErrorNamingTheEvent) {
+  const std::string old_path = ::testing::TempDir() + "probes_tests_upgrade_bad.lcmlog";
+  {
+    lcm::LogFile log(old_path, "w");
+    WriteEvent(&log, "PROBE_POSE", {1, 2, 3});
+  }
+  try {
+    UpgradePoseLog(old_path, old_path + ".out", "PROBE_POSE", MakeSender("", "x"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("event 1 on 'PROBE_POSE' is neither"), std::string::npos) << e.what();
+  }
 }
 
 TEST(TrajectoryLcmLog, CsvIsNotMistakenForALog) {

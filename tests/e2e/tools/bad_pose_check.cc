@@ -30,6 +30,7 @@
 #include "haptics_msgs/probe_pose_t.hpp"
 #include "haptics_msgs/server_status_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
+#include "msgs/sender_identity.h"
 #include "probes/network_guard.h"
 
 namespace {
@@ -151,8 +152,12 @@ int main(int argc, char** argv) {
   int64_t seq = 0;
   probe_pose_t pose{};
   pose.orientation[0] = 1.0;
+  const int64_t session = haptics_msgs::NewSession();
   auto good = [&](double z) {
     pose = probe_pose_t{};
+    pose.version = probe_pose_t::VERSION;
+    pose.sender_session = session;
+    pose.sender_device = "bad_pose_check";
     pose.seq = ++seq;
     pose.utime = NowMicros();
     pose.position[0] = 0.002;
