@@ -27,6 +27,7 @@
 #include "probes/replay_listener.h"
 #include "probes/replay_result_csv.h"
 #include "probes/replay_summary.h"
+#include "probes/session_plot.h"
 
 namespace {
 
@@ -97,6 +98,12 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.01, 100.0));
   app.add_option("--out", out_csv, "per-pose result CSV");
   app.add_option("--summary", summary_json, "JSON summary");
+  std::string plot_png;
+  bool no_plot = false;
+  app.add_option("--plot", plot_png,
+                 "session plot PNG (gnuplot: |force|, |torque|, depth, contacts, round trip over "
+                 "time; default with --out: the CSV's path with .png)");
+  app.add_flag("--no-plot", no_plot, "do not write the session plot");
   app.add_option("--start-delay", start_delay,
                  "wait up to this long (s) for a first status or wrench message; 0: do not wait")
       ->capture_default_str()->check(CLI::Range(0.0, 600.0));
@@ -210,6 +217,15 @@ int main(int argc, char** argv) {
       probes::WriteResultCsv(out, trajectory, matcher.records());
       if (!out.flush()) throw probes::InputError(out_csv + ": write failed");
     }
+    if (!out_csv.empty() && !no_plot) {
+      if (plot_png.empty()) plot_png = probes::SessionPlotPath(out_csv);
+      std::string error;
+      if (!probes::WriteSessionPlot(out_csv, plot_png, "probe_replay session: " + trajectory_path, &error)) {
+        throw probes::InputError("session plot: " + error);
+      }
+    } else if (!plot_png.empty() && !no_plot) {
+      throw probes::InputError("--plot needs --out (the plot is drawn from the result CSV)");
+    }
     if (!summary_json.empty()) {
       std::ofstream out(summary_json);
       if (!out) throw probes::InputError(summary_json + ": cannot open for writing");
@@ -220,7 +236,9 @@ int main(int argc, char** argv) {
     std::cerr << "probe_replay: " << e.what() << "\n";
     return kExitInput;
   }
-  std::cout << probes::FormatSummary(summary) << std::flush;
+  std::cout << probes::FormatSummary(summary);
+  if (!out_csv.empty() && !no_plot) std::cout << "session plot: " << plot_png << "\n";
+  std::cout << std::flush;
   if (publish_failures > 0) {
     std::cerr << "probe_replay: " << publish_failures << " publish calls failed\n";
     return kExitLcm;
