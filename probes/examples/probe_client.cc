@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <thread>
+#include <sys/select.h>
 
 #include <lcm/lcm-cpp.hpp>
 
@@ -31,6 +31,17 @@ double ScriptedZ(double t) {
   if (t < 2.7) return pressed;
   if (t < 3.7) return pressed + (hover - pressed) * 0.5 * (1 - std::cos(M_PI * (t - 2.7)));
   return hover;
+}
+
+// Dispatches answers as they arrive until `until` (select: microsecond timeout).
+void HandleUntil(lcm::LCM& lcm, Clock::time_point until) {
+  for (auto now = Clock::now(); now < until; now = Clock::now()) {
+    timeval tv{0, std::chrono::duration_cast<std::chrono::microseconds>(until - now).count()};
+    fd_set fds;
+    FD_ZERO(&fds);
+    FD_SET(lcm.getFileno(), &fds);
+    if (select(lcm.getFileno() + 1, &fds, nullptr, nullptr, &tv) > 0) lcm.handle();
+  }
 }
 
 struct WrenchPrinter {
@@ -75,7 +86,6 @@ int main(int argc, char** argv) {
   const int n = 4000;  // 4 s at 1 kHz
   const auto start = Clock::now();
   for (int i = 0; i < n; ++i) {
-    std::this_thread::sleep_until(start + std::chrono::microseconds(1000 * i));
     haptics_msgs::probe_pose_t pose{};
     pose.utime = NowUs();
     pose.seq = i;
@@ -83,10 +93,9 @@ int main(int argc, char** argv) {
     pose.orientation[0] = 1.0;                // identity quaternion (w, x, y, z)
     pose.has_velocity = false;                // the server differentiates the poses
     lcm.publish("PROBE_POSE", &pose);
-    while (lcm.handleTimeout(0) > 0) {}  // dispatch the answers that have arrived
+    HandleUntil(lcm, start + std::chrono::milliseconds(i + 1));  // answers, until the next pose
   }
-  const auto stop = Clock::now() + std::chrono::milliseconds(200);  // late answers
-  while (Clock::now() < stop) lcm.handleTimeout(10);
+  HandleUntil(lcm, Clock::now() + std::chrono::milliseconds(200));  // late answers
 
   std::printf("sent %d poses, %d answered, max |force| %.3f N\n", n, printer.answers,
               printer.max_force);

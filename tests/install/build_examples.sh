@@ -19,9 +19,10 @@ for ex in pd_core probes; do
   # Headers from the stage, never from the repository.
   cc="$work/$ex/compile_commands.json"
   grep -q -- "-isystem $stage/include\|-I$stage/include" "$cc" || fail "$ex: $stage/include not on the include path"
-  if grep -q -- "-I$src\b\|-isystem $src\b\|-I$src/\|-isystem $src/" "$cc"; then
-    fail "$ex: compiled against the source tree"
-  fi
+  # Every include directory outside the stage must be outside the repository.
+  grep -Eo -- '(-I|-isystem )[^ ]+' "$cc" | sed -E 's/^(-I|-isystem )//' | sort -u | while read -r dir; do
+    [[ "$dir" == "$stage"/* || "$dir" != "$src"/* ]] || fail "$ex: compiled against $dir (repository)"
+  done
 done
 [[ -x "$work/pd_core/pd_two_meshes" ]] || fail "pd_two_meshes not built"
 [[ -x "$work/probes/probe_client" ]] || fail "probe_client not built"
