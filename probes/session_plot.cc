@@ -42,8 +42,10 @@ set ylabel "penetration depth (mm)"
 plot csv using (column("t")):(1e3 * column("penetration_depth")) with lines lw 2 lc rgb "#1f77b4" notitle
 set ylabel "contact regions"
 plot csv using (column("t")):(column("contact_count")) with steps lw 2 lc rgb "#2ca02c" notitle
-set ylabel "round trip (us)"
+set ylabel "round trip (us, log)"
 set xlabel "trajectory time (s)"
+set logscale y
+set offsets graph 0, graph 0, 0, 0
 plot csv using (column("t")):(column("latency_us")) with points pt 7 ps 0.35 lc rgb "#ff7f0e" notitle
 unset multiplot
 )GP";

@@ -176,8 +176,9 @@ void WriteSessionPage(std::ostream& out, const haptics::SceneConfig& config,
   const RerenderAgreement& ag = rerendered.agreement;
   char note[1024];
   std::snprintf(note, sizeof(note),
-                "Arrows: the recorded wrench on the device (largest %.3g N, %.3g N·m); full "
-                "length is the device limit (%.3g N, %.3g N·m). The simulated tool and the contacts are not on the wire: they "
+                "Arrows: the recorded wrench on the device, the largest (%.3g N, %.3g N·m) "
+                "drawn full length, or 5%% of the device limit (%.3g N, %.3g N·m) if more. "
+                "The simulated tool and the contacts are not on the wire: they "
                 "are recomputed by the server's renderer from the recorded device poses; its "
                 "force differs from the recorded one by %.3g N median, %.3g N p99, %.3g N max "
                 "over %lld answered poses.",
@@ -187,7 +188,9 @@ void WriteSessionPage(std::ostream& out, const haptics::SceneConfig& config,
   j += ",\"t\":" + t + ",\"device\":" + dev + ",\"tool_pose\":" + tool + ",\"force\":" + force +
        ",\"torque\":" + torque + ",\"depth\":" + depth + ",\"contact_count\":" + count +
        ",\"round_trip_us\":" + rtt + ",\"answered\":" + answered + ",\"flags\":" + flags +
-       ",\"contacts\":" + contacts + ",\"force_limit\":" + std::to_string(config.device.max_force) +
+       ",\"contacts\":" + contacts + ",\"max_force\":" + std::to_string(max_force) +
+       ",\"max_torque\":" + std::to_string(max_torque) +
+       ",\"force_limit\":" + std::to_string(config.device.max_force) +
        ",\"torque_limit\":" + std::to_string(config.device.max_torque) +
        ",\"max_contacts_per_frame\":" + std::to_string(max_contacts) + ",\"note\":" + Quoted(note) +
        "}";

@@ -67,12 +67,13 @@
     bounds.expandByPoint(new THREE.Vector3(S.device[k], S.device[k + 1], S.device[k + 2]));
   }
 
-  // Arrows: length = magnitude * scale; the device's force (torque) limit is
-  // drawn `arrowMax` long.
+  // Arrows: length = magnitude * scale; the session's largest force (torque)
+  // is drawn `arrowMax` long, unless it is below 5% of the device's limit
+  // (then 5% of the limit is: numerical noise stays invisible).
   const sphere = bounds.getBoundingSphere(new THREE.Sphere());
   const arrowMax = Math.max(0.5 * sphere.radius, 3 * S.tool.radius);
-  const forceScale = arrowMax / S.force_limit;
-  const torqueScale = arrowMax / S.torque_limit;
+  const forceScale = arrowMax / Math.max(S.max_force, 0.05 * S.force_limit);
+  const torqueScale = arrowMax / Math.max(S.max_torque, 0.05 * S.torque_limit);
   const forceArrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, 0xff3030);
   const torqueArrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, 0xb040ff);
   for (const a of [forceArrow, torqueArrow]) {  // drawn over the meshes: the device is often inside them
@@ -85,7 +86,7 @@
     if (!arrow.visible) return;
     arrow.position.copy(origin);
     arrow.setDirection(v.clone().normalize());
-    arrow.setLength(len, Math.min(0.3 * len, 0.25 * arrowMax), Math.min(0.15 * len, 0.12 * arrowMax));
+    arrow.setLength(len, Math.min(0.2 * len, 0.12 * arrowMax), Math.min(0.1 * len, 0.06 * arrowMax));
   }
 
   // Contact points and normals (their length: 0.6 tool radius).
