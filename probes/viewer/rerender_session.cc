@@ -4,18 +4,9 @@
 #include <cmath>
 
 #include "haptics/haptic_renderer.h"
+#include "probes/latency_stats.h"
 
 namespace probes {
-namespace {
-
-double Percentile(std::vector<double> v, double p) {  // nearest rank
-  if (v.empty()) return 0.0;
-  const size_t k = static_cast<size_t>(std::ceil(p * static_cast<double>(v.size()))) - 1;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  return v[k];
-}
-
-}  // namespace
 
 RerenderedSession RerenderSession(const haptics::SceneConfig& config,
                                   const haptics::SceneModels& models, const Session& session) {
@@ -58,9 +49,10 @@ RerenderedSession RerenderSession(const haptics::SceneConfig& config,
   }
   RerenderAgreement& a = out.agreement;
   a.compared = static_cast<int64_t>(diffs.size());
-  a.median_force_diff = Percentile(diffs, 0.5);
-  a.p99_force_diff = Percentile(diffs, 0.99);
-  a.max_force_diff = diffs.empty() ? 0.0 : *std::max_element(diffs.begin(), diffs.end());
+  if (!diffs.empty()) {  // the nearest-rank summary of the replay's latencies serves any samples
+    const LatencySummary d = SummariseLatencies(diffs);
+    a.median_force_diff = d.p50, a.p99_force_diff = d.p99, a.max_force_diff = d.max;
+  }
   return out;
 }
 

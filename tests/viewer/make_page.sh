@@ -2,15 +2,17 @@
 # Turns the recorded session (result CSV or LCM log) into a page with
 # session_viewer, checks what it reports (every pose read, the recomputed
 # force close to the recorded one) and opens the page (check_page.sh).
-#   make_page.sh VIEWER SCENE SESSION PNG_STATS WORK_DIR EXPECTED_POSES
+#   make_page.sh VIEWER SCENE SESSION PNG_STATS WORK_DIR MIN_POSES MAX_POSES
+# (An LCM log may miss a few poses: the recorder is an ordinary UDP listener.)
 set -euo pipefail
-viewer="$1" scene="$2" session="$3" png_stats="$4" work="$5" poses="$6"
+viewer="$1" scene="$2" session="$3" png_stats="$4" work="$5" min_poses="$6" max_poses="$7"
 fail() { echo "make_page: FAIL: $1" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 "$viewer" --scene "$scene" --session "$session" --out "$work/session.html" | tee "$work/viewer.out" ||
   fail "session_viewer failed"
-grep -q "^session_viewer: $session ($poses poses, [0-9]* answered)" "$work/viewer.out" ||
-  fail "expected $poses poses read from $session"
+poses=$(sed -nE "s|^session_viewer: $session \(([0-9]+) poses, [0-9]+ answered\).*|\1|p" "$work/viewer.out")
+[[ -n "$poses" ]] && ((poses >= min_poses && poses <= max_poses)) ||
+  fail "read ${poses:-no} poses from $session, expected $min_poses..$max_poses"
 # The simulated tool is recomputed offline from the device poses: its force
 # must match the recorded one (the same renderer on the same poses; the live
 # loop's tick phase differs by < 1 ms): median within 2% of the peak force.
