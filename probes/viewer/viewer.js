@@ -77,7 +77,8 @@
   const forceArrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, 0xff3030);
   const torqueArrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, 0xb040ff);
   for (const a of [forceArrow, torqueArrow]) {  // drawn over the meshes: the device is often inside them
-    a.traverse((o) => { if (o.material) o.material.depthTest = false; o.renderOrder = 3; });
+    // transparent: drawn with (after) the translucent plane, not under it
+    a.traverse((o) => { if (o.material) { o.material.depthTest = false; o.material.transparent = true; } o.renderOrder = 3; });
   }
   scene.add(forceArrow, torqueArrow);
   function setArrow(arrow, origin, v, scale) {
@@ -94,11 +95,11 @@
   const pointGeometry = new THREE.BufferGeometry();
   pointGeometry.setAttribute('position', new THREE.Float32BufferAttribute(new Float32Array(3 * Math.max(1, maxContacts)), 3));
   const points = new THREE.Points(pointGeometry, new THREE.PointsMaterial(
-    { color: 0xffe030, size: 9, sizeAttenuation: false, depthTest: false }));
+    { color: 0xffe030, size: 9, sizeAttenuation: false, depthTest: false, transparent: true }));
   points.renderOrder = 2;
   const normalGeometry = new THREE.BufferGeometry();
   normalGeometry.setAttribute('position', new THREE.Float32BufferAttribute(new Float32Array(6 * Math.max(1, maxContacts)), 3));
-  const normals = new THREE.LineSegments(normalGeometry, new THREE.LineBasicMaterial({ color: 0xffe030, depthTest: false }));
+  const normals = new THREE.LineSegments(normalGeometry, new THREE.LineBasicMaterial({ color: 0xffe030, depthTest: false, transparent: true }));
   normals.renderOrder = 2;
   scene.add(points, normals);
 
