@@ -122,6 +122,10 @@ int main(int argc, char** argv) {
                  "(soak runs)")
       ->capture_default_str()->check(CLI::Range(1, 100000));
   CLI11_PARSE(app, argc, argv);
+  if (!plot_png.empty() && out_csv.empty()) {
+    std::cerr << "probe_replay: --plot needs --out (the plot is drawn from the result CSV)\n";
+    return kExitInput;
+  }
 
   probes::Trajectory trajectory;
   try {
@@ -223,8 +227,6 @@ int main(int argc, char** argv) {
       if (!probes::WriteSessionPlot(out_csv, plot_png, "probe_replay session: " + trajectory_path, &error)) {
         throw probes::InputError("session plot: " + error);
       }
-    } else if (!plot_png.empty() && !no_plot) {
-      throw probes::InputError("--plot needs --out (the plot is drawn from the result CSV)");
     }
     if (!summary_json.empty()) {
       std::ofstream out(summary_json);
