@@ -12,10 +12,12 @@
 # Needs a build (scripts/build.sh; BUILD_DIR overrides build/). Results are
 # kept in DEMO_OUT (default: a new /tmp/haptics_demo.* directory).
 # Exit code: non-zero if the server failed or a pose went unanswered (see
-# probes/scripts/run_session.sh for the codes). One exception, by design of
-# the server: it renders at a fixed rate from the newest pose, so a pose that
-# arrives in the same tick as the next one is superseded (the server counts
-# it in poses_dropped). Up to MAX_SUPERSEDED (default 0.2) of the poses may
+# probes/scripts/run_session.sh for the codes), 5 if only the session page
+# (session_viewer) failed. Besides result.csv the run leaves result.png (the
+# session plot) and session.html (the browser viewer) in the results directory.
+# One exception, by design of the server: it renders at a fixed rate from the
+# newest pose, so a pose that arrives in the same tick as the next one is
+# superseded (the server counts it in poses_dropped). Up to MAX_SUPERSEDED (default 0.2) of the poses may
 # be superseded; MAX_SUPERSEDED=0 demands an answer to every pose.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
@@ -59,5 +61,18 @@ if ((rc == 0)); then
   echo "demo: OK (per-pose results: $out/result.csv, summary: $out/summary.json)"
 else
   echo "demo: FAILED (exit $rc); logs in $out" >&2
+fi
+if [[ -s "$out/result.png" ]]; then
+  echo "demo: session plot (|force|, |torque|, depth, contacts, round trip over time): $out/result.png"
+fi
+# The session in the browser: scene, device and simulated tool, wrench, contacts.
+if [[ -s "$out/result.csv" && -x "$BIN/session_viewer" ]]; then
+  if "$BIN/session_viewer" --scene "$config" --session "$out/result.csv" --out "$out/session.html" \
+       >"$out/viewer.out" 2>&1; then
+    echo "demo: session viewer page (open in a browser, works offline): $out/session.html"
+  else
+    echo "demo: session_viewer failed; see $out/viewer.out" >&2
+    ((rc != 0)) || rc=5
+  fi
 fi
 exit "$rc"

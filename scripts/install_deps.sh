@@ -11,6 +11,7 @@ PKGS=(
   libcgal-demo assimp-testmodels
   iproute2 util-linux jq
   clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer
+  libjs-three chromium libpng-dev  # session viewer page (three.js), its browser test, png_stats
 )
 missing=()
 for p in "${PKGS[@]}"; do

@@ -28,6 +28,7 @@
 #include "probes/replay_result_csv.h"
 #include "probes/replay_summary.h"
 #include "probes/sender.h"
+#include "probes/session_plot.h"
 
 namespace {
 
@@ -106,6 +107,12 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.01, 100.0));
   app.add_option("--out", out_csv, "per-pose result CSV");
   app.add_option("--summary", summary_json, "JSON summary");
+  std::string plot_png;
+  bool no_plot = false;
+  app.add_option("--plot", plot_png,
+                 "session plot PNG (gnuplot: |force|, |torque|, depth, contacts, round trip over "
+                 "time; default with --out: the CSV's path with .png)");
+  app.add_flag("--no-plot", no_plot, "do not write the session plot");
   app.add_option("--start-delay", start_delay,
                  "wait up to this long (s) for a first status or wrench message; 0: do not wait")
       ->capture_default_str()->check(CLI::Range(0.0, 600.0));
@@ -129,6 +136,10 @@ int main(int argc, char** argv) {
   app.add_option("--log-session", log_session_text,
                  "for an LCM log holding several senders: replay this sender's poses");
   CLI11_PARSE(app, argc, argv);
+  if (!plot_png.empty() && out_csv.empty()) {
+    std::cerr << "probe_replay: --plot needs --out (the plot is drawn from the result CSV)\n";
+    return kExitInput;
+  }
 
   probes::Trajectory trajectory;
   probes::Sender sender;
@@ -236,6 +247,13 @@ int main(int argc, char** argv) {
       probes::WriteResultCsv(out, trajectory, matcher.records());
       if (!out.flush()) throw probes::InputError(out_csv + ": write failed");
     }
+    if (!out_csv.empty() && !no_plot) {
+      if (plot_png.empty()) plot_png = probes::SessionPlotPath(out_csv);
+      std::string error;
+      if (!probes::WriteSessionPlot(out_csv, plot_png, "probe_replay session: " + trajectory_path, &error)) {
+        throw probes::InputError("session plot: " + error);
+      }
+    }
     if (!summary_json.empty()) {
       std::ofstream out(summary_json);
       if (!out) throw probes::InputError(summary_json + ": cannot open for writing");
@@ -246,7 +264,9 @@ int main(int argc, char** argv) {
     std::cerr << "probe_replay: " << e.what() << "\n";
     return kExitInput;
   }
-  std::cout << probes::FormatSummary(summary) << std::flush;
+  std::cout << probes::FormatSummary(summary);
+  if (!out_csv.empty() && !no_plot) std::cout << "session plot: " << plot_png << "\n";
+  std::cout << std::flush;
   if (publish_failures > 0) {
     std::cerr << "probe_replay: " << publish_failures << " publish calls failed\n";
     return kExitLcm;
