@@ -14,6 +14,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "haptics_msgs/probe_pose_t.hpp"
+#include "haptics_msgs/sender_identity.h"
 #include "haptics_msgs/wrench_t.hpp"
 
 using Clock = std::chrono::steady_clock;  // CLOCK_MONOTONIC, like the server
@@ -45,12 +46,14 @@ void HandleUntil(lcm::LCM& lcm, Clock::time_point until) {
 }
 
 struct WrenchPrinter {
+  int64_t session = 0;  // ours: answers rendering another sender's stream are not ours
   bool server_seen = false;
   int answers = 0;  // poses answered (the server repeats its last answer when no new pose came)
   int64_t last_seq = -1;
   double max_force = 0;
   void OnWrench(const lcm::ReceiveBuffer*, const std::string&, const haptics_msgs::wrench_t* w) {
     server_seen = true;
+    if (w->pose_session != session) return;  // not rendering our stream (yet)
     if (w->pose_seq < 0 || w->pose_seq == last_seq) return;  // no pose yet, or a repeat
     last_seq = w->pose_seq;
     ++answers;
@@ -73,6 +76,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   WrenchPrinter printer;
+  // Who we are: the server renders one sender at a time (msgs/README.md).
+  printer.session = haptics_msgs::NewSession();
   lcm.subscribe("HAPTIC_WRENCH", &WrenchPrinter::OnWrench, &printer);
 
   // The server publishes at 1 kHz from its start, posed or not: wait for it.
@@ -87,6 +92,9 @@ int main(int argc, char** argv) {
   const auto start = Clock::now();
   for (int i = 0; i < n; ++i) {
     haptics_msgs::probe_pose_t pose{};
+    pose.version = haptics_msgs::probe_pose_t::VERSION;
+    pose.sender_session = printer.session;
+    pose.sender_device = "probe_client";
     pose.utime = NowUs();
     pose.seq = i;
     pose.position[2] = ScriptedZ(1e-3 * i);  // x = y = 0, m

@@ -27,7 +27,7 @@ install(TARGETS pd_core haptics_msgs EXPORT PolyDepthHapticsTargets
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/pd_core/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/pd_core
         FILES_MATCHING PATTERN "*.h" PATTERN "apps" EXCLUDE PATTERN "examples" EXCLUDE)
 install(DIRECTORY ${PROJECT_BINARY_DIR}/msgs/generated/haptics_msgs DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-        FILES_MATCHING PATTERN "*.hpp")
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "sender_identity.h")
 file(GLOB PDH_LCM_FILES ${PROJECT_SOURCE_DIR}/msgs/*.lcm)
 install(FILES ${PDH_LCM_FILES} DESTINATION ${PDH_SHARE_DIR}/lcm)
 
