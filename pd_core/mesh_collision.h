@@ -8,7 +8,8 @@ namespace pd {
 // Any probe triangle intersecting any scene triangle, probe moved by offset_S.
 bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S);
 
-// SurfacesIntersect, or containment either way for closed meshes.
+// SurfacesIntersect, or a part of one mesh inside the other's solid, either
+// way, for closed meshes (pd_core/solid_containment.h).
 bool InCollision(const ModelPair& pair, const Vector3& offset_S);
 
 }  // namespace pd
