@@ -2,13 +2,15 @@
 // Solid containment for closed meshes: is a point inside? The parity of the
 // crossings of a ray with the surface, counted through the BVH, is exact for
 // a closed mesh (every edge shared by exactly two faces) whenever the ray
-// passes clear of edges and vertices. A ray that passes within rounding of an
+// passes clear of edges and vertices: every such ray gives the same parity,
+// so the first clean one decides. A ray that passes within rounding of an
 // edge or vertex, or runs in a face's plane, is re-cast along another of
-// seven fixed directions; two clean rays that agree decide (a third breaks a
-// tie). If the rays cannot decide (the point lies on or within rounding of an
-// edge or vertex), the answer fails closed: a point on the surface is inside
-// (the solid is closed), any other point is decided by the exact winding
-// number (the sum of the triangles' solid angles, O(triangles): rare).
+// seven fixed directions (each leaning toward the nearest face of the root
+// box: short rays visit few boxes). If no ray is clean (the point lies on or
+// within rounding of an edge or vertex), the answer fails closed: a point on
+// the surface is inside (the solid is closed), any other point is decided by
+// the exact winding number (the sum of the triangles' solid angles,
+// O(triangles): rare).
 #include "pd_core/collision_model.h"
 
 namespace pd {
