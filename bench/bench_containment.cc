@@ -14,7 +14,6 @@
 // Writes containment_cost.md and containment_cost.csv into --out (default
 // bench/results).
 #include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -46,19 +45,6 @@ using pd::TriangleMesh;
 using pd::Vector3;
 using Model = std::shared_ptr<const CollisionModel>;
 using Clock = std::chrono::steady_clock;
-
-TriangleMesh Translated(TriangleMesh mesh, const Vector3& p) {
-  for (Vector3& v : mesh.vertices) v += p;
-  return mesh;
-}
-
-TriangleMesh Joined(const TriangleMesh& a, const TriangleMesh& b) {
-  TriangleMesh m = a;
-  const int base = m.num_vertices();
-  m.vertices.insert(m.vertices.end(), b.vertices.begin(), b.vertices.end());
-  for (const auto& t : b.triangles) m.triangles.push_back(t + Eigen::Vector3i::Constant(base));
-  return m;
-}
 
 struct Case {
   std::string name;
@@ -122,7 +108,7 @@ Vector3 SamplePoint(const CollisionModel& m, bool inside, double clearance, std:
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   for (int attempt = 0; attempt < 100000; ++attempt) {
     const Vector3 p = root.center_M + root.R_MB * root.half_B.cwiseProduct(Vector3(U(rng), U(rng), U(rng)));
-    Model cube = CollisionModel::Build(Translated(pd::MakeBox(Vector3::Constant(clearance)), p));
+    Model cube = CollisionModel::Build(pd::TranslatedMesh(pd::MakeBox(Vector3::Constant(clearance)), p));
     if (pd::SurfacesIntersect(pd::ModelPair(*cube, m, Isometry3::Identity(), Isometry3::Identity()),
                               Vector3::Zero()))
       continue;
@@ -161,8 +147,9 @@ void WriteReports(const std::vector<Result>& results, const pd_bench::MachineInf
      << m.build_type << ", " << m.compiler << "\n\n"
      << "`InCollision` = `SurfacesIntersect` (BVH pair descent) || `AnyComponentInside` (one "
         "`PointInsideMesh` per connected component of each mesh against the other, closed, mesh: ray "
-        "parity through the BVH, the first clean ray, leaning toward the nearest root-box face, decides). Old = the test before issue 12: vertex 0 of "
-        "each mesh only (wrong on multi-part meshes: column \"old answer\"). Each call timed "
+        "parity through the BVH, the first clean ray, leaning toward the nearest root-box face, "
+        "decides). Old = the test before issue 12: vertex 0 of each mesh only (wrong on multi-part meshes: "
+        "column \"old answer\"). Each call timed "
      << repeats << " times with a steady clock (single thread, shared 2-core machine); microseconds.\n\n"
      << "| case | probe tris / parts | scene tris / parts | colliding | surfaces cross | old answer | "
         "InCollision median | p99 | max | SurfacesIntersect median | containment median | p99 | max | "
@@ -196,7 +183,8 @@ int main(int argc, char** argv) {
 
   std::vector<Case> cases;
   const TriangleMesh small = pd::MakeBox(Vector3::Constant(0.01));
-  const Model two_cubes = CollisionModel::Build(Joined(Translated(small, Vector3(0.1, 0, 0)), small));
+  const Model two_cubes =
+      CollisionModel::Build(pd::JoinedMeshes(pd::TranslatedMesh(small, Vector3(0.1, 0, 0)), small));
   const Model cube = CollisionModel::Build(pd::MakeBox(Vector3::Constant(0.025)));
   cases.push_back({"two cubes (far part first) in a cube", two_cubes, cube,
                    "issue 12's case: the part at the origin wholly inside the 0.025 cube"});
@@ -212,19 +200,22 @@ int main(int argc, char** argv) {
   }
   const Model bones = Load(bones_path);
   const Model armadillo = Load(armadillo_path);
-  for (const auto& [model, name] : {std::pair{bones, std::string("bones.off")},
-                                    std::pair{armadillo, std::string("armadillo.off")}}) {
+  for (const auto& [model, name] :
+       {std::pair{bones, std::string("bones.off")}, std::pair{armadillo, std::string("armadillo.off")}}) {
     const double clearance = 0.01 * model->radius();
     const Vector3 in = SamplePoint(*model, true, clearance, rng);
     const Vector3 outside = SamplePoint(*model, false, clearance, rng);
-    const Model inner = CollisionModel::Build(Translated(pd::MakeBox(Vector3::Constant(clearance)), in));
-    const Model outer = CollisionModel::Build(Translated(pd::MakeBox(Vector3::Constant(clearance)), outside));
+    const Model inner =
+        CollisionModel::Build(pd::TranslatedMesh(pd::MakeBox(Vector3::Constant(clearance)), in));
+    const Model outer =
+        CollisionModel::Build(pd::TranslatedMesh(pd::MakeBox(Vector3::Constant(clearance)), outside));
     cases.push_back({"small cube inside " + name, inner, model,
                      "a cube of 1% of the mesh's radius at a random point inside its solid (no contact)"});
     cases.push_back({"small cube near " + name + " (free)", outer, model,
                      "the same cube at a random point of the mesh's bounding box outside its solid"});
-    cases.push_back({name + " as probe around a small cube inside it", model, inner,
-                     "every part of the mesh tested against the cube, and the cube's vertex against the mesh"});
+    cases.push_back(
+        {name + " as probe around a small cube inside it", model, inner,
+         "every part of the mesh tested against the cube, and the cube's vertex against the mesh"});
   }
   // The costly case: every part of a many-part probe inside the scene's root
   // box, so each is tested by rays through the scene's 52k-triangle BVH.
@@ -238,7 +229,7 @@ int main(int argc, char** argv) {
       const Vector3 p = SamplePoint(*armadillo, inside, 1.01 * r, rng);
       cases.push_back({std::string("bones.off (26 parts, 5% of its size) ") +
                            (inside ? "inside armadillo.off" : "in armadillo.off's box, free"),
-                       CollisionModel::Build(Translated(small_bones, p)), armadillo,
+                       CollisionModel::Build(pd::TranslatedMesh(small_bones, p)), armadillo,
                        inside ? "every bone inside the solid: the first part tested decides"
                               : "every bone outside the solid but inside its root box: 26 parts, "
                                 "each decided by rays through the 52k-triangle BVH (the worst case)"});

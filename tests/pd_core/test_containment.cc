@@ -21,25 +21,11 @@ namespace {
 
 using Model = std::shared_ptr<const CollisionModel>;
 
-TriangleMesh Translated(TriangleMesh mesh, const Vector3& p) {
-  for (Vector3& v : mesh.vertices) v += p;
-  return mesh;
-}
-
-// b's vertices and triangles after a's.
-TriangleMesh Joined(const TriangleMesh& a, const TriangleMesh& b) {
-  TriangleMesh m = a;
-  const int base = m.num_vertices();
-  m.vertices.insert(m.vertices.end(), b.vertices.begin(), b.vertices.end());
-  for (const auto& t : b.triangles) m.triangles.push_back(t + Eigen::Vector3i::Constant(base));
-  return m;
-}
-
 // The mesh: two cubes of half-size 0.01, the far one (x = 0.1)
 // listed first, the other at the origin.
 TriangleMesh TwoCubes() {
   const TriangleMesh cube = MakeBox(Vector3::Constant(0.01));
-  return Joined(Translated(cube, Vector3(0.1, 0, 0)), cube);
+  return JoinedMeshes(TranslatedMesh(cube, Vector3(0.1, 0, 0)), cube);
 }
 
 Isometry3 At(const Vector3& p, const Quaternion& q = Quaternion::Identity()) {
@@ -122,12 +108,11 @@ TEST(PointInMesh, RayTraversalStackBoundHoldsForAnyDepth) {
 }
 
 TEST(CollisionModel, OneVertexPerConnectedComponent) {
-  EXPECT_EQ(CollisionModel::Build(MakeBox(Vector3::Constant(1)))->component_vertices(),
-            std::vector<int>{0});
+  EXPECT_EQ(CollisionModel::Build(MakeBox(Vector3::Constant(1)))->component_vertices(), std::vector<int>{0});
   Model two = CollisionModel::Build(TwoCubes());
   EXPECT_EQ(two->component_vertices(), (std::vector<int>{0, 8}));
   // Three parts, the last touching nothing, plus an unused vertex.
-  TriangleMesh three = Joined(TwoCubes(), Translated(MakeIcosphere(0.01, 1), Vector3(0, 0.1, 0)));
+  TriangleMesh three = JoinedMeshes(TwoCubes(), TranslatedMesh(MakeIcosphere(0.01, 1), Vector3(0, 0.1, 0)));
   three.vertices.push_back(Vector3(5, 5, 5));
   EXPECT_EQ(CollisionModel::Build(three)->component_vertices(), (std::vector<int>{0, 8, 16}));
 }
@@ -166,8 +151,8 @@ TEST(MultiPartContainment, PartWhollyInsideTheOtherSolidCollidesEitherWay) {
 // parts wholly inside the scene (no surface crossing) occur.
 TEST(MultiPartContainment, AgreesWithTheReferenceAtRandomPoses) {
   const TriangleMesh part = MakeBox(Vector3(0.04, 0.03, 0.02));
-  const TriangleMesh probe = Joined(Joined(Translated(part, Vector3(0.6, 0, 0)), part),
-                                    Translated(MakeIcosphere(0.03, 1), Vector3(0, 0.5, 0.1)));
+  const TriangleMesh probe = JoinedMeshes(JoinedMeshes(TranslatedMesh(part, Vector3(0.6, 0, 0)), part),
+                                          TranslatedMesh(MakeIcosphere(0.03, 1), Vector3(0, 0.5, 0.1)));
   Model P = CollisionModel::Build(probe);
   Model S = CollisionModel::Build(MakeTorus(0.6, 0.25, 48, 24));
   ASSERT_EQ(P->component_vertices().size(), 3u);
@@ -180,8 +165,7 @@ TEST(MultiPartContainment, AgreesWithTheReferenceAtRandomPoses) {
     const Isometry3 X_WS = At(Vector3::Zero());
     const ModelPair pair(*P, *S, X_WP, X_WS);
     const bool fast = InCollision(pair, Vector3::Zero());
-    ASSERT_EQ(fast, ReferenceInCollision(P->mesh(), X_WP, true, S->mesh(), X_WS, true))
-        << "pose " << i;
+    ASSERT_EQ(fast, ReferenceInCollision(P->mesh(), X_WP, true, S->mesh(), X_WS, true)) << "pose " << i;
     colliding += fast;
     contained_only += fast && !SurfacesIntersect(pair, Vector3::Zero());
   }
@@ -227,14 +211,14 @@ TEST(MultiPartContainment, EachBoneOfCgalBonesInsideABox) {
   for (int k = 0; k < parts; ++k) {
     const MeshBounds b = ComputeBounds(bone[k]);
     const Vector3 half = 0.5 * (b.max - b.min) + Vector3::Constant(1e-3 * b.diagonal());
-    Model box = CollisionModel::Build(Translated(MakeBox(half), b.center()));
+    Model box = CollisionModel::Build(TranslatedMesh(MakeBox(half), b.center()));
     // The first other bone whose bounds stay clear of the box.
     for (int j = 0; j < parts; ++j) {
       const MeshBounds bj = ComputeBounds(bone[j]);
       const bool overlap = (bj.max.array() > b.center().array() - half.array()).all() &&
                            (bj.min.array() < b.center().array() + half.array()).all();
       if (j == k || overlap) continue;
-      Model pair_of_bones = CollisionModel::Build(Joined(bone[j], bone[k]));
+      Model pair_of_bones = CollisionModel::Build(JoinedMeshes(bone[j], bone[k]));
       ASSERT_EQ(pair_of_bones->component_vertices().size(), 2u);
       for (bool bones_probe : {true, false}) {
         const ModelPair pair =
