@@ -88,8 +88,12 @@ if ((floor_s > 0)); then
     cpu=$(( $(nproc) > 1 ? 1 : 0 ))
     echo "soak: measuring the machine's late wake-up floor with cyclictest for ${floor_s} s"
     if cyclictest -m -p 80 -a "$cpu" -t 1 -i 1000 -D "$floor_s" -q -h 2000 >"$work/cyclictest.txt" 2>&1; then
-      floor_text=$(awk -v d="$floor_s" '!/^#/ && NF >= 2 && $1 + 0 >= 1000 { late += $2 } !/^#/ && NF >= 2 { n += $2 }
-        END { printf "%d of %d cycles >= 1 ms late in %d s (%.1f per min)", late, n, d, late / (d / 60) }' "$work/cyclictest.txt")
+      # Histogram rows are "<us> <count>" up to 1999 us; later ones are overflows.
+      floor_text=$(awk -v d="$floor_s" '!/^#/ && NF >= 2 { n += $2; if ($1 + 0 >= 1000) late += $2 }
+        /^# Histogram Overflows:/ { over = $4 + 0 }
+        END { late += over; n += over
+              printf "%d of %d cycles >= 1 ms late in %d s (%.1f per min; %d >= 2 ms)", late, n, d, late / (d / 60), over }' \
+        "$work/cyclictest.txt")
     else
       floor_text="cyclictest failed: $(tail -n 1 "$work/cyclictest.txt")"
     fi
