@@ -162,7 +162,8 @@ bool PointInsideMesh(const CollisionModel& model, const Vector3& p_M) {
     return dirs;
   }();
   // Short rays visit fewer boxes: each leans toward the root box's nearest
-  // face (13x faster for points deep in a 52k-triangle box, bench_containment).
+  // face (about 10x less time for a 26-part probe in armadillo.off's box than
+  // fixed directions: bench_containment).
   const Vector3 o_B = root.R_MB.transpose() * (p_M - root.center_M);
   int axis = 0;
   (root.half_B - o_B.cwiseAbs()).minCoeff(&axis);
