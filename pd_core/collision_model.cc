@@ -1,6 +1,7 @@
 #include "pd_core/collision_model.h"
 
 #include <cmath>
+#include <numeric>
 
 #include "pd_core/fibonacci_sphere.h"
 
@@ -11,6 +12,31 @@ std::vector<Vector3> FibonacciDirections(int n) {
   std::vector<Vector3> dirs(n);
   for (int i = 0; i < n; ++i) dirs[i] = FibonacciDirection(i, n);
   return dirs;
+}
+
+// The smallest vertex of each connected component (union-find over the
+// triangles' vertices); vertices no triangle uses belong to no component.
+std::vector<int> ComponentVertices(const TriangleMesh& mesh) {
+  std::vector<int> parent(mesh.vertices.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  auto unite = [&](int a, int b) {  // the smaller root stays the root
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) used[t[k]] = 1;
+    unite(t[0], t[1]);
+    unite(t[0], t[2]);
+  }
+  std::vector<int> reps;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (used[v] && find(v) == v) reps.push_back(v);
+  return reps;
 }
 
 }  // namespace
@@ -66,6 +92,7 @@ std::shared_ptr<const CollisionModel> CollisionModel::Build(TriangleMesh mesh) {
       if (e.f0 == t) m->owned_features_[t] |= static_cast<uint8_t>(1u << (3 + k));
     }
   }
+  m->component_vertices_ = ComponentVertices(M);
   return m;
 }
 
@@ -87,6 +114,7 @@ size_t CollisionModel::MemoryBytes() const {
   bytes += face_normals_.capacity() * sizeof(Vector3);
   bytes += support_dirs_M_.capacity() * sizeof(Vector3) + support_values_.capacity() * sizeof(double);
   bytes += hull_vertices_.capacity() * sizeof(int) + owned_features_.capacity();
+  bytes += component_vertices_.capacity() * sizeof(int);
   return bytes;
 }
 

@@ -46,6 +46,13 @@ class CollisionModel {
   // so pair traversals visit every feature pair once without a hash set.
   const std::vector<uint8_t>& owned_features() const { return owned_features_; }
 
+  // One vertex of each connected component (triangles linked through shared
+  // vertices): the smallest vertex index of the component, in increasing
+  // order. Where two meshes' surfaces do not cross, each component lies
+  // wholly inside or wholly outside the other's solid, so containment tests
+  // one vertex per component (pd_core/solid_containment.h).
+  const std::vector<int>& component_vertices() const { return component_vertices_; }
+
   // Heap bytes held by the model (mesh, topology, BVH, precomputation).
   size_t MemoryBytes() const;
 
@@ -63,6 +70,7 @@ class CollisionModel {
   std::vector<double> support_values_;
   std::vector<int> hull_vertices_;
   std::vector<uint8_t> owned_features_;
+  std::vector<int> component_vertices_;
 };
 
 }  // namespace pd

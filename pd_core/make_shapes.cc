@@ -58,6 +58,19 @@ TriangleMesh MakeBox(const Vector3& half_extents) {
   return mesh;
 }
 
+TriangleMesh TranslatedMesh(TriangleMesh mesh, const Vector3& p_M) {
+  for (Vector3& v : mesh.vertices) v += p_M;
+  return mesh;
+}
+
+TriangleMesh JoinedMeshes(const TriangleMesh& a, const TriangleMesh& b) {
+  TriangleMesh m = a;
+  const int base = m.num_vertices();
+  m.vertices.insert(m.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (const auto& t : b.triangles) m.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+  return m;
+}
+
 TriangleMesh MakeIcosphere(double radius, int subdivisions) {
   Require(Positive(radius), "MakeIcosphere: radius must be finite and > 0");
   Require(subdivisions >= 0 && subdivisions <= 8, "MakeIcosphere: subdivisions must be in [0, 8]");

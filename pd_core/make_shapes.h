@@ -10,6 +10,13 @@ namespace pd {
 // Axis-aligned box centred at the origin of M: 8 vertices, 12 triangles.
 TriangleMesh MakeBox(const Vector3& half_extents);
 
+// `mesh` with every vertex moved by p_M (m).
+TriangleMesh TranslatedMesh(TriangleMesh mesh, const Vector3& p_M);
+
+// One mesh of a's vertices and triangles followed by b's (indices shifted):
+// a multi-part mesh where they share no vertex.
+TriangleMesh JoinedMeshes(const TriangleMesh& a, const TriangleMesh& b);
+
 // Sphere of `radius` centred at the origin: an icosahedron split
 // `subdivisions` times (20 * 4^subdivisions triangles, 0..8), vertices on the
 // sphere, so the mesh lies inside the true sphere.

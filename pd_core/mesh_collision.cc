@@ -2,7 +2,7 @@
 
 #include "pd_core/box_overlap.h"
 #include "pd_core/leaf_pairs_near.h"
-#include "pd_core/point_in_mesh.h"
+#include "pd_core/solid_containment.h"
 #include "pd_core/triangle_geometry.h"
 
 namespace pd {
@@ -63,22 +63,8 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, Collision
 }
 
 bool InCollision(const ModelPair& pair, const Vector3& offset_S, CollisionWitness* witness) {
-  return SurfacesIntersect(pair, offset_S, witness) || SolidContained(pair, offset_S);
-}
-
-bool SolidContained(const ModelPair& pair, const Vector3& offset_S) {
-  // No surface crossing: either disjoint or one solid wholly inside the other,
-  // so testing a single vertex of each decides.
-  if (pair.S.closed() && pair.P.mesh().num_vertices() > 0 &&
-      PointInsideMesh(pair.S, pair.ProbeVertex(0, offset_S)))
-    return true;
-  if (pair.P.closed() && pair.S.mesh().num_vertices() > 0) {
-    // Scene vertex 0 in P's frame: R_SP^T (p_S - p_SP - offset_S).
-    const Vector3 p_P = pair.X_SP.R_SP.transpose() *
-                        (pair.S.mesh().vertices[0] - pair.X_SP.p_SP - offset_S);
-    if (PointInsideMesh(pair.P, p_P)) return true;
-  }
-  return false;
+  // No surface crossing: disjoint, or a part of one wholly inside the other.
+  return SurfacesIntersect(pair, offset_S, witness) || AnyComponentInside(pair, offset_S);
 }
 
 }  // namespace pd

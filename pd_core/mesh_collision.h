@@ -17,10 +17,8 @@ struct CollisionWitness {
 bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S,
                        CollisionWitness* witness = nullptr);
 
-// With no surface crossing: one closed solid wholly inside the other.
-bool SolidContained(const ModelPair& pair, const Vector3& offset_S);
-
-// SurfacesIntersect, or containment either way for closed meshes.
+// SurfacesIntersect, or a part of one mesh inside the other's solid, either
+// way, for closed meshes (pd_core/solid_containment.h).
 bool InCollision(const ModelPair& pair, const Vector3& offset_S,
                  CollisionWitness* witness = nullptr);
 

@@ -19,7 +19,7 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'D', 'M', 'O', 'D', 'E', 'L', '\0'};
 // Bump when CollisionModel, Bvh, MeshTopology or this layout changes.
-constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kFormatVersion = 2;  // 2: component_vertices_
 constexpr size_t kHeaderBytes = sizeof(kMagic) + 4 + 8 + 4;  // magic, version, payload size, crc
 
 uint32_t Crc32(const void* data, size_t bytes) {
@@ -124,6 +124,7 @@ struct ModelCacheAccess {
     w.PutVector(m.support_values_);
     w.PutVector(m.hull_vertices_);
     w.PutVector(m.owned_features_);
+    w.PutVector(m.component_vertices_);
     return w.bytes();
   }
 
@@ -157,6 +158,7 @@ struct ModelCacheAccess {
     r.GetVector(&m->support_values_);
     r.GetVector(&m->hull_vertices_);
     r.GetVector(&m->owned_features_);
+    r.GetVector(&m->component_vertices_);
     if (!r.ok() || !r.at_end()) {
       *problem = "payload does not parse (truncated or wrong layout)";
       return nullptr;
@@ -205,6 +207,9 @@ struct ModelCacheAccess {
     if (m.support_dirs_M_.size() != m.support_values_.size()) return fail("support samples");
     for (int v : m.hull_vertices_)
       if (v < 0 || v >= nv) return fail("hull vertices");
+    for (int v : m.component_vertices_)
+      if (v < 0 || v >= nv) return fail("component vertices");
+    if ((nt > 0) != !m.component_vertices_.empty()) return fail("component vertices");
     return true;
   }
 };

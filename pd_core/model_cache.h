@@ -1,12 +1,13 @@
 #pragma once
 // Disk cache of CollisionModel precomputation (topology, face normals, BVH,
-// bounding sphere, support samples, hull candidates, feature ownership), keyed
-// by the mesh's content: the CRC-32s of its vertex and triangle bytes, their
-// counts and the format version. A cache file is only used if every check
-// passes: magic, version, size, payload CRC-32, structural bounds, and the
-// stored mesh equal byte for byte to the one asked for. Anything else
-// (truncated, corrupt, from another mesh or version) is reported and the
-// model rebuilt and rewritten; a cache file is never trusted blindly.
+// bounding sphere, support samples, hull candidates, feature ownership, one
+// vertex per connected component), keyed by the mesh's content: the CRC-32s
+// of its vertex and triangle bytes, their counts and the format version. A
+// cache file is only used if every check passes: magic, version, size,
+// payload CRC-32, structural bounds, and the stored mesh equal byte for byte
+// to the one asked for. Anything else (truncated, corrupt, from another mesh
+// or version) is reported and the model rebuilt and rewritten; a cache file
+// is never trusted blindly.
 // Files are written to a temporary name and renamed, so readers never see a
 // half-written file.
 #include <memory>

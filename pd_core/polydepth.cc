@@ -10,6 +10,7 @@
 #include "pd_core/contact_regions.h"
 #include "pd_core/fibonacci_sphere.h"
 #include "pd_core/mesh_collision.h"
+#include "pd_core/solid_containment.h"
 #include "pd_core/min_norm_point.h"
 #include "pd_core/model_pair.h"
 #include "pd_core/support_plane_starts.h"
@@ -266,7 +267,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       s.constraints_q_S = Vector3::Constant(1e300);  // about to be overwritten
       if (!CollectContactConstraintsIfSurfacesFree(pair, q, contact_distance, &s.constraints,
                                                    &s.witness.tp, &s.witness.ts) ||
-          SolidContained(pair, q))
+          AnyComponentInside(pair, q))
         break;
       s.constraints_q_S = q;
       verified_q_S = q;

@@ -38,7 +38,9 @@ struct ReferencePdOptions {
   int num_refine_starts = 4;  // best distinct directions that are refined
   double slit_tol = 1e-6;     // relative to size (sum of bounding radii)
   // Evaluated in addition to the sphere (world, need not be unit; zero vectors
-  // are ignored), e.g. known face normals or the fast solver's answer.
+  // are ignored), e.g. known face normals. Never the answer of a solver under
+  // test: a reference seeded with it measures "close to what we found", not
+  // "close to the true PD".
   std::vector<Vector3> extra_directions_W;
 };
 

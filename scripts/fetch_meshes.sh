@@ -5,7 +5,7 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 OUT="${1:-$ROOT/build/meshes}"
 TAR=/usr/share/doc/libcgal-dev/data.tar.gz
-MESHES=(knot1.off cow.off camel.off bunny00.off armadillo.off ChineseDragon-10kv.off mushroom.off fandisk.off bull.off refined_elephant.off)
+MESHES=(knot1.off cow.off camel.off bunny00.off armadillo.off ChineseDragon-10kv.off mushroom.off fandisk.off bull.off refined_elephant.off bones.off)
 [[ -f "$TAR" ]] || { echo "fetch_meshes: $TAR missing (apt-get install libcgal-demo)" >&2; exit 1; }
 mkdir -p "$OUT"
 need=()

@@ -45,6 +45,7 @@ void ExpectSameModel(const pd::CollisionModel& a, const pd::CollisionModel& b) {
   EXPECT_TRUE(SameBytes(a.support_values(), b.support_values()));
   EXPECT_TRUE(SameBytes(a.hull_vertices(), b.hull_vertices()));
   EXPECT_TRUE(SameBytes(a.owned_features(), b.owned_features()));
+  EXPECT_TRUE(SameBytes(a.component_vertices(), b.component_vertices()));
 }
 
 class ModelCacheTest : public ::testing::Test {

@@ -4,10 +4,12 @@
 // duplicate vertices, open meshes and polygon soups, needles. Every answer
 // must be finite and verified collision-free (independently, by the
 // reference code), its iteration count bounded, and its depth within a
-// stated tolerance of the slow reference PD (pd_core/reference_pd.h). The
-// reference also evaluates our direction, so it is never above our answer by
-// more than round-off; tolerances are relative to the depth or to the pair's
-// size, never absolute lengths. Cases that test_polydepth.cc already covers
+// stated tolerance above the slow reference PD (pd_core/reference_pd.h),
+// which gets no hint from the solver; where the case has an analytic PD, the
+// answer is checked against it too. Both answers are upper bounds on the true
+// PD (verified free), so ours below the reference means the reference
+// stopped short, not that ours is wrong. Tolerances are relative to the
+// depth or to the pair's size, never absolute lengths. Cases that test_polydepth.cc already covers
 // (probe or scene wholly inside the other, coherent push through a thin
 // plate, 1e-3 scale) are not repeated here.
 #include <gtest/gtest.h>
@@ -54,8 +56,8 @@ double Slack(const Model& P, const Model& S, const PolyDepthOptions& o = {}) {
 
 // Solves cold and checks what every hard case must satisfy: collision state
 // agrees with the reference, answer finite, bounded iterations, verified
-// free by both the solver and the independent reference test, and depth
-// within [ref - slack, ref * (1 + rel_tol) + slack].
+// free by both the solver and the independent reference test (so depth >=
+// the true PD), and depth <= ref * (1 + rel_tol) + slack.
 Checked SolveAndCheck(const Model& P, const Isometry3& X_WP, const Model& S, const Isometry3& X_WS,
                       double rel_tol, const std::string& label, int num_directions = 600) {
   PolyDepthSolver solver(P, S);
@@ -67,7 +69,6 @@ Checked SolveAndCheck(const Model& P, const Isometry3& X_WP, const Model& S, con
   EXPECT_LE(r.iterations, IterationBound(solver.options())) << label;
   ReferencePdOptions ro;
   ro.num_directions = num_directions;
-  ro.extra_directions_W.push_back(r.normal_W);
   c.ref = ReferencePenetrationDepth(P->mesh(), X_WP, P->closed(), S->mesh(), X_WS, S->closed(), ro);
   EXPECT_EQ(r.in_collision, c.ref.in_collision) << label;
   if (!r.in_collision) return c;
@@ -76,7 +77,6 @@ Checked SolveAndCheck(const Model& P, const Isometry3& X_WP, const Model& S, con
                                     r.translation_W))
       << label << ": the answer is not free";
   const double slack = Slack(P, S, solver.options());
-  EXPECT_GE(r.depth, c.ref.depth - slack) << label;
   EXPECT_LE(r.depth, c.ref.depth * (1.0 + rel_tol) + slack)
       << label << ": depth " << r.depth << " reference " << c.ref.depth;
   std::printf("[ case     ] %-44s depth %.6g ref %.6g err %+.2e iterations %d %s\n", label.c_str(),

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pd_core/make_shapes.h"
+#include "tests/prerequisites.h"
 
 namespace pd {
 namespace {
@@ -149,16 +150,11 @@ bool HasWarning(const LoadedMesh& loaded, const std::string& a, const std::strin
   return false;
 }
 
-void RequireFile(const std::string& path) {
-  if (!fs::exists(path)) GTEST_SKIP() << path << " missing (run scripts/fetch_meshes.sh)";
-}
-
 // ---------------------------------------------------------------- real files
 
 TEST_F(LoadMeshTest, KnotOffIsClosedAndKeepsFileCoordinatesTimesScale) {
   const std::string path = kMeshDir + "/knot1.off";
-  RequireFile(path);
-  if (IsSkipped()) return;
+  PD_REQUIRE_FILE(path, "run scripts/fetch_meshes.sh");
   const OffFile file = ReadTriangleOff(path);
   MeshLoadOptions options;
   options.scale = 0.01;
@@ -182,8 +178,7 @@ TEST_F(LoadMeshTest, KnotOffIsClosedAndKeepsFileCoordinatesTimesScale) {
 
 TEST_F(LoadMeshTest, CowOffIsClosed) {
   const std::string path = kMeshDir + "/cow.off";
-  RequireFile(path);
-  if (IsSkipped()) return;
+  PD_REQUIRE_FILE(path, "run scripts/fetch_meshes.sh");
   const LoadedMesh loaded = LoadMesh(path);
   EXPECT_EQ(loaded.mesh.num_triangles(), 5804);
   EXPECT_TRUE(loaded.topology.closed()) << loaded.topology.Describe();
@@ -193,8 +188,7 @@ TEST_F(LoadMeshTest, CowOffIsClosed) {
 
 TEST_F(LoadMeshTest, MushroomOffIsOpenAndWarnsByName) {
   const std::string path = kMeshDir + "/mushroom.off";
-  RequireFile(path);
-  if (IsSkipped()) return;
+  PD_REQUIRE_FILE(path, "run scripts/fetch_meshes.sh");
   const LoadedMesh loaded = LoadMesh(path);
   EXPECT_EQ(loaded.mesh.num_triangles(), 4608);
   EXPECT_FALSE(loaded.topology.closed());
@@ -219,7 +213,7 @@ TEST_F(LoadMeshTest, AssimpModelsInEveryFormat) {
   };
   for (const Case& c : cases) {
     const std::string path = kAssimpModels + "/" + c.file;
-    if (!fs::exists(path)) GTEST_SKIP() << path << " missing (install assimp-testmodels)";
+    PD_REQUIRE_FILE(path, "apt-get install assimp-testmodels");
     const LoadedMesh loaded = LoadMesh(path);
     EXPECT_EQ(loaded.mesh.num_triangles(), c.triangles) << c.file;
     EXPECT_EQ(loaded.mesh.num_vertices(), c.vertices) << c.file;
@@ -231,9 +225,8 @@ TEST_F(LoadMeshTest, AssimpModelsInEveryFormat) {
 TEST_F(LoadMeshTest, SpiderStlBinaryAndAsciiAgree) {
   const std::string binary = kAssimpModels + "/STL/Spider_binary.stl";
   const std::string ascii = kAssimpModels + "/STL/Spider_ascii.stl";
-  RequireFile(binary);
-  RequireFile(ascii);
-  if (IsSkipped()) return;
+  PD_REQUIRE_FILE(binary, "apt-get install assimp-testmodels");
+  PD_REQUIRE_FILE(ascii, "apt-get install assimp-testmodels");
   const LoadedMesh a = LoadMesh(binary), b = LoadMesh(ascii);
   ASSERT_EQ(a.mesh.num_triangles(), b.mesh.num_triangles());
   ASSERT_EQ(a.mesh.num_vertices(), b.mesh.num_vertices());
@@ -251,7 +244,7 @@ TEST_F(LoadMeshTest, WusonIsTheSameMeshInEveryFormat) {
   int vertices = -1;
   for (const char* file : {"OFF/Wuson.off", "STL/Wuson.stl", "PLY/Wuson.ply", "OBJ/WusonOBJ.obj"}) {
     const std::string path = kAssimpModels + "/" + file;
-    if (!fs::exists(path)) GTEST_SKIP() << path << " missing";
+    PD_REQUIRE_FILE(path, "apt-get install assimp-testmodels");
     const LoadedMesh loaded = LoadMesh(path);
     EXPECT_EQ(loaded.mesh.num_triangles(), 3732) << file;
     // The PLY carries texture coordinates; positions alone decide welding.

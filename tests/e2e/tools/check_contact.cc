@@ -37,6 +37,13 @@
 //                                   # watchdog scale the force down on purpose)
 //       min_rows: 200
 //       min_fraction: 1.0           # share of selected rows that must pass
+//
+// PD_E2E_TIMING_RELAXED (scripts/test_sanitize.sh: a sanitized server cannot
+// keep 1 kHz) relaxes timing only: a pose answered more than late_ms after
+// it was sent (default 2 ms) counts as a stall of the server, and rows within
+// settle_s after it (default 0.1 s) are left out of the rules, as after a
+// send stall. Every rule is still enforced (force direction, no force in
+// free space, min_rows), and so is the finite/limits check.
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -58,6 +65,7 @@ struct Row {
   int line = 0;
   double t = 0, x = 0, y = 0, z = 0;
   double send_us = -1;   // replay send time (µs); -1 if never sent
+  double latency_us = -1;  // pose sent to wrench received (µs); -1 if unknown
   bool after_stall = false;
   bool answered = false;
   long flags = 0;
@@ -120,6 +128,7 @@ std::vector<Row> ReadResults(const std::string& path) {
       r.tau[0] = num("tx"), r.tau[1] = num("ty"), r.tau[2] = num("tz");
       r.depth = num("penetration_depth");
       r.flags = static_cast<long>(num("flags"));
+      if (col.count("latency_us") && !f[col["latency_us"]].empty()) r.latency_us = num("latency_us");
     }
     rows.push_back(r);
   }
@@ -244,26 +253,32 @@ int main(int argc, char** argv) {
     Die(std::string(argv[2]) + ": " + e.what());
   }
   bool ok = true;
-  if (spec["skip_after_send_stall"]) {
-    const double late_us = 1e3 * spec["skip_after_send_stall"]["late_ms"].as<double>();
-    const double settle_s = spec["skip_after_send_stall"]["settle_s"].as<double>();
+  if (spec["skip_after_send_stall"] || timing_relaxed) {
+    const YAML::Node stall = spec["skip_after_send_stall"];
+    const double late_us = 1e3 * (stall && stall["late_ms"] ? stall["late_ms"].as<double>() : 2.0);
+    const double settle_s = stall && stall["settle_s"] ? stall["settle_s"].as<double>() : 0.1;
     const Row* first = nullptr;
     double last_late_t = -INFINITY;
-    long late = 0, skipped = 0;
+    long late = 0, answered_late = 0, skipped = 0;
     for (Row& r : rows) {
       if (r.send_us < 0) continue;
       if (first == nullptr) first = &r;
       const double lateness_us = (r.send_us - first->send_us) - 1e6 * (r.t - first->t);
-      if (lateness_us > late_us) {
-        ++late;
-        last_late_t = r.t;
-      }
+      const bool sent_late = stall && lateness_us > late_us;
+      // Relaxed timing: the server falling behind is a stall too.
+      const bool server_late = timing_relaxed && r.answered && r.latency_us > late_us;
+      late += sent_late ? 1 : 0;
+      answered_late += server_late ? 1 : 0;
+      if (sent_late || server_late) last_late_t = r.t;
       r.after_stall = r.t - last_late_t <= settle_s;
       skipped += r.after_stall ? 1 : 0;
     }
-    std::printf("send stalls: %ld poses sent more than %.1f ms late; %ld rows within %.3f s after "
-                "them left out of the rules\n",
-                late, late_us / 1e3, skipped, settle_s);
+    std::printf("send stalls: %ld poses sent more than %.1f ms late", late, late_us / 1e3);
+    if (timing_relaxed) {
+      std::printf("; PD_E2E_TIMING_RELAXED: %ld poses answered more than %.1f ms after sending",
+                  answered_late, late_us / 1e3);
+    }
+    std::printf("; %ld rows within %.3f s after them left out of the rules\n", skipped, settle_s);
   }
   // Every answer present, finite and within the device limits.
   double max_force = spec["max_force_N"] ? spec["max_force_N"].as<double>() : INFINITY;
@@ -329,13 +344,9 @@ int main(int argc, char** argv) {
                 rule.name.c_str(), rule_ok ? "PASS" : "FAIL", selected, rule.min_rows,
                 100 * fraction, 100 * rule.min_fraction, lo, hi);
     if (first_bad_line > 0) std::printf(", first failing row on line %d", first_bad_line);
-    // Contact rules assume the loop keeps real time (the tool follows the
-    // device). Sanitizer builds of the PolyDepth scenes cannot, so
-    // scripts/test_sanitize.sh reports these rules without enforcing them;
-    // the finite/limits rule above is always enforced.
-    if (!rule_ok && timing_relaxed) std::printf(" (not enforced: PD_E2E_TIMING_RELAXED)");
     std::printf("\n");
-    ok = ok && (rule_ok || timing_relaxed);
+    // Enforced with relaxed timing too: only the late rows were left out.
+    ok = ok && rule_ok;
   }
   std::printf("check_contact: %s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
