@@ -115,7 +115,8 @@ struct HapticStep {
   PdOutcome pd;
   bool free_beyond = false;   // still free kHapticFreeMargin * size further out
   bool converged = true;      // result.converged
-  bool cold_restart = false;  // colliding, not the first pose, not warm-started
+  bool cold_restart = false;  // colliding, not the first pose, warm start failed
+  bool cross_checked = false; // the deep coherent answer was checked against cold starts
   double box_tests = 0, triangle_tests = 0;
   double fcl_time_us = kNaN;
   bool fcl_collide = false;

@@ -44,8 +44,8 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       s.converged = r.converged;
       s.box_tests = static_cast<double>(r.box_tests);
       s.triangle_tests = static_cast<double>(r.triangle_tests);
-      s.cold_restart = previous_seen && r.in_collision &&
-                       r.initializer != pd::Initializer::kMotionCoherence;
+      s.cold_restart = previous_seen && r.in_collision && r.warm_start_failed;
+      s.cross_checked = r.cross_checked;
       previous_seen = true;
       out.steps.push_back(s);
       bar.Tick();
@@ -80,11 +80,7 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
   }
   {
     Progress bar(tag + "reference PD (haptic)", static_cast<int>(jobs.size()));
-    pd::ReferencePdOptions options;
-    options.num_directions = st.ref_directions;
-    options.refine_iterations = st.ref_refine_iterations;
-    options.num_refine_starts = st.ref_refine_starts;
-    RunReference(pair, jobs, options, st.ref_threads, &bar);
+    RunReference(pair, jobs, st, &bar);
   }
   return out;
 }
@@ -106,6 +102,7 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
     boxes.push_back(s.box_tests);
     tris.push_back(s.triangle_tests);
     m.cold_restarts += s.cold_restart;
+    m.cross_checks += s.cross_checked;
     m.not_converged += !s.converged;
     m.invalid += !(s.pd.valid && s.pd.verified_free);
     m.not_free_beyond += !s.free_beyond;

@@ -20,7 +20,7 @@ struct HapticSummary {
   double median_ratio = kNaN, p99_ratio = kNaN;  // PolyDepth / FCL, colliding poses
   double p999_us = kNaN;
   double mean_iterations = kNaN, mean_box_tests = kNaN, mean_triangle_tests = kNaN;
-  int cold_restarts = 0, not_converged = 0, invalid = 0, not_free_beyond = 0;
+  int cold_restarts = 0, cross_checks = 0, not_converged = 0, invalid = 0, not_free_beyond = 0;
   int fcl_disagree = 0;    // FCL's verdict differs from the path's
   int n_ref = 0;
   Summary abs_error;       // |depth - ref| / ref

@@ -117,11 +117,7 @@ PairResult RunPair(const BenchPair& pair, const RunSettings& st) {
         r.has_ref = true;
         jobs.push_back({&r.c, r.pd.translation_W, &r.ref});
       }
-    pd::ReferencePdOptions options;
-    options.num_directions = st.ref_directions;
-    options.refine_iterations = st.ref_refine_iterations;
-    options.num_refine_starts = st.ref_refine_starts;
-    RunReference(pair, jobs, options, st.ref_threads, &bar);
+    RunReference(pair, jobs, st, &bar);
   }
   return out;
 }

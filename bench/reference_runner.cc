@@ -60,4 +60,13 @@ void RunReference(const BenchPair& pair, const std::vector<RefJob>& jobs,
   for (std::thread& t : pool) t.join();
 }
 
+void RunReference(const BenchPair& pair, const std::vector<RefJob>& jobs, const RunSettings& st,
+                  Progress* progress) {
+  pd::ReferencePdOptions options;
+  options.num_directions = st.ref_directions;
+  options.refine_iterations = st.ref_refine_iterations;
+  options.num_refine_starts = st.ref_refine_starts;
+  RunReference(pair, jobs, options, st.ref_threads, progress);
+}
+
 }  // namespace pd_bench

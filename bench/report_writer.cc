@@ -283,13 +283,14 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
         "`PolyDepthOptions`, over the colliding poses; FCL = `fcl::collide` of "
         "`BVHModel<OBB>` meshes (boolean, first contact) at the same poses, measured in the same "
         "run after PolyDepth: the cost of a collision test, the yardstick for a warm PD query. "
-        "Cold restarts = colliding poses after the first whose answer did not come from motion "
-        "coherence. An answer counts as free only if the tool is also free "
+        "Cold restarts = colliding poses after the first where no coherent start gave an answer; "
+        "cross-checks = coherent answers that had grown much deeper than their anchor and were "
+        "checked against the cold starts (a shorter answer on the same side wins). An answer counts as free only if the tool is also free "
      << G(kHapticFreeMargin) << " x pair size further out along it. Reference: "
      << run.settings.haptic_ref << " colliding poses per path, spread evenly, no hint.\n\n";
   md << "| Pair | Tool / object tris | Motion | Poses (colliding) | PD median / p99 / p99.9 / max us "
         "| FCL collide median / p99 us | ratio median / p99 | free-pose median us | iter. | "
-        "boxes / tris per query | cold restarts | not converged | not free (+margin) | ref | "
+        "boxes / tris per query | cold restarts (cross-checks) | not converged | not free (+margin) | ref | "
         "mean / max \\|err\\| |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const HapticPairResult& r : run.haptic) {
@@ -301,7 +302,8 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
        << F(m.pd_us.max) << " | " << F(m.fcl_us.median) << " / " << F(m.fcl_us.p99) << " | "
        << F(m.median_ratio, 2) << " / " << F(m.p99_ratio, 2) << " | " << F(m.pd_free_us.median)
        << " | " << F(m.mean_iterations, 2) << " | " << F(m.mean_box_tests, 0) << " / "
-       << F(m.mean_triangle_tests, 0) << " | " << m.cold_restarts << " | " << m.not_converged
+       << F(m.mean_triangle_tests, 0) << " | " << m.cold_restarts << " (" << m.cross_checks
+       << ") | " << m.not_converged
        << " | " << m.invalid << " (" << m.not_free_beyond << ") | " << m.n_ref << " | "
        << Pct(m.abs_error.mean) << " / " << Pct(m.abs_error.max) << " |\n";
   }
@@ -323,6 +325,14 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
        << PassMiss(m.abs_error.mean <= kHapticMeanError) << " |\n";
   }
   md << "\n";
+}
+
+void FilesSection(const std::vector<std::string>& csv_files,
+                  const std::vector<std::string>& png_files, std::ostream& md) {
+  md << "## Files\n\n";
+  for (const std::string& f : csv_files) md << "- [" << f << "](" << f << ")\n";
+  for (const std::string& f : png_files) md << "- [" << f << "](" << f << "): ![" << f << "](" << f << ")\n";
+  if (!png_files.empty()) md << "- pd_plots.gp: the gnuplot script (data inline) behind the plots\n";
 }
 
 }  // namespace
@@ -347,10 +357,7 @@ void WriteMarkdownReport(const BenchRun& run, const std::string& path,
   PaperSection(run, md);
   SweepSection(run, md);
   WriteObservations(run, md);
-  md << "## Files\n\n";
-  for (const std::string& f : csv_files) md << "- [" << f << "](" << f << ")\n";
-  for (const std::string& f : png_files) md << "- [" << f << "](" << f << "): ![" << f << "](" << f << ")\n";
-  if (!png_files.empty()) md << "- pd_plots.gp: the gnuplot script (data inline) behind the plots\n";
+  FilesSection(csv_files, png_files, md);
 }
 
 void WriteHapticReport(const BenchRun& run, const std::string& path,
@@ -365,9 +372,7 @@ void WriteHapticReport(const BenchRun& run, const std::string& path,
         "benchmark (`bench/run_pd_bench.sh`) includes this section in pd_speed_error.md.\n\n";
   MachineSection(run, md);
   HapticSection(run, md);
-  md << "## Files\n\n";
-  for (const std::string& f : csv_files) md << "- [" << f << "](" << f << ")\n";
-  for (const std::string& f : png_files) md << "- [" << f << "](" << f << "): ![" << f << "](" << f << ")\n";
+  FilesSection(csv_files, png_files, md);
 }
 
 }  // namespace pd_bench

@@ -46,6 +46,12 @@ struct PenetrationResult {
   // early: the answer is still verified free (an upper bound), just not
   // known to be a local optimum.
   bool converged = true;
+  // Warm-started (coherent) queries: no coherent start gave an answer and
+  // the query restarted cold.
+  bool warm_start_failed = false;
+  // A coherent answer had grown much deeper than its anchor and was checked
+  // against the cold starts (the shorter one on the same side won).
+  bool cross_checked = false;
   int64_t box_tests = 0;       // bounding-box tests this query made (cost counter)
   int64_t triangle_tests = 0;  // triangle-pair tests this query made
   double time_us = 0.0;  // solver wall time (microseconds)

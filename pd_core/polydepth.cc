@@ -32,6 +32,11 @@ const char* InitializerName(Initializer init) {
 
 namespace {
 
+// Cross-check a coherent answer with cold starts once it is this many times
+// deeper than its anchor plus this fraction of the pair's size.
+constexpr double kReanchorGrowth = 1.5;
+constexpr double kReanchorFloor = 5e-3;
+
 // A collision-free configuration and where it came from.
 struct Start {
   Vector3 q_S;
@@ -76,6 +81,7 @@ struct PolyDepthSolver::Impl {
   CollisionWitness witness;   // a triangle pair that intersected lately
   ProximityCounters counters;
   std::vector<ContactConstraint> previous_constraints;  // at the previous answer
+  double anchor_depth = 0.0;  // |q| the coherent answers are measured against (m)
   // Work budget (PolyDepthOptions::max_work / max_time_us) of this query.
   int64_t work_limit = 0;
   double time_limit_us = 0.0;
@@ -173,6 +179,7 @@ void PolyDepthSolver::ResetWarmStart() {
   impl_->candidates.Invalidate();
   impl_->previous_constraints.clear();
   impl_->witness = CollisionWitness{};
+  impl_->anchor_depth = 0.0;
   impl_->has_previous = false;
   impl_->has_previous_free = false;
 }
@@ -246,6 +253,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     s.has_previous_free = true;
     s.previous_X_SP = pair.X_SP;
     s.previous_constraints.clear();
+    s.anchor_depth = 0.0;
     return finish();
   }
   s.best_norm = 1e300;
@@ -347,8 +355,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     }
   }
 
-  // 2. Cold starts (also the fallback when coherence found nothing).
-  if (s.best_origin == Initializer::kNone) {
+  // 2. Cold starts: the fallback when coherence found nothing, and the
+  // cross-check of a coherent answer that has grown much deeper than where it
+  // was last anchored (a followed local optimum can drift far from the PD).
+  auto cold_starts = [&] {
     s.starts.clear();
     ComputeSupportPlaneStarts(pair, &s.support_starts);
     // Maximally clear: the best support-plane separations of the two models.
@@ -379,6 +389,33 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (i > 0 && s.OutOfBudget()) break;
       s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin);
     }
+  };
+  const bool warm_found = s.best_origin != Initializer::kNone;
+  result.warm_start_failed = warm && (s.has_previous || s.has_previous_free) && !warm_found;
+  if (!warm_found) {
+    cold_starts();
+  } else if (s.anchor_depth > 0.0 &&
+             s.best_norm > kReanchorGrowth * s.anchor_depth + kReanchorFloor * size &&
+             !s.OutOfBudget()) {
+    const Vector3 warm_q = s.best_q_S;
+    const double warm_norm = s.best_norm;
+    const Initializer warm_origin = s.best_origin;
+    s.best_norm = 1e300;
+    s.best_origin = Initializer::kNone;
+    cold_starts();
+    // Take a shorter cold answer unless it points back through the object
+    // (more than 120 degrees from the coherent one): a thin wall pushed from
+    // one side keeps pushing back, it never flips to the far side.
+    const bool better = s.best_origin != Initializer::kNone &&
+                        s.best_norm < warm_norm - options_.convergence_tol * size &&
+                        s.best_q_S.dot(warm_q) > -0.5 * s.best_norm * warm_norm;
+    if (!better) {
+      s.best_q_S = warm_q;
+      s.best_norm = warm_norm;
+      s.best_origin = warm_origin;
+    }
+    result.cross_checked = true;
+    s.anchor_depth = s.best_norm;
   }
 
   // 3. Verify; fall back to a dense directional search if needed (not when
@@ -422,6 +459,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     GroupContactRegions(s.constraints, s.best_q_S, X_WS, 0.1 * size, &result);
   }
   s.has_previous_free = false;
+  // The anchor follows the shallowest answer since the last cross-check
+  // (or the first of a contact); see step 2.
+  if (valid) s.anchor_depth = s.anchor_depth > 0.0 ? std::min(s.anchor_depth, s.best_norm) : s.best_norm;
+  else s.anchor_depth = 0.0;
   if (valid) {
     s.has_previous = true;
     s.previous_q_S = s.best_q_S;
