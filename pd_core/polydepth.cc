@@ -89,14 +89,14 @@ struct PolyDepthSolver::Impl {
   bool stopped_early = false;
   // True once the budget is spent and some verified answer exists.
   bool OutOfBudget() {
-    if (best_origin == Initializer::kNone) return false;
-    if (work_limit > 0 && counters.box_tests + counters.triangle_tests >= work_limit)
-      return stopped_early = true;
-    if (time_limit_us > 0 &&
-        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t_start)
-                .count() >= time_limit_us)
-      return stopped_early = true;
-    return false;
+    if (best_origin == Initializer::kNone || !BudgetSpent()) return false;
+    return stopped_early = true;
+  }
+  bool BudgetSpent() const {
+    return (work_limit > 0 && counters.box_tests + counters.triangle_tests >= work_limit) ||
+           (time_limit_us > 0 &&
+            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t_start)
+                    .count() >= time_limit_us);
   }
   // Warm-start state, relative to the scene (so a moving scene is fine).
   bool has_previous = false;       // previous frame collided and was solved
@@ -358,6 +358,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // 2. Cold starts: the fallback when coherence found nothing, and the
   // cross-check of a coherent answer that has grown much deeper than where it
   // was last anchored (a followed local optimum can drift far from the PD).
+  bool cross_checking = false;
   auto cold_starts = [&] {
     s.starts.clear();
     ComputeSupportPlaneStarts(pair, &s.support_starts);
@@ -376,8 +377,11 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (u.norm() < 1e-9) continue;
       s.starts.push_back({SupportPlaneTranslation(pair, u.normalized()), Initializer::kRandom});
     }
-    // Out-project every start once, then iterate from the closest few.
+    // Out-project every start once, then iterate from the closest few. A
+    // cross-check (a coherent answer in hand) gives up when the budget is spent.
     for (Start& st : s.starts) {
+      st.contact_norm = 1e300;
+      if (cross_checking && s.BudgetSpent()) continue;
       bool touched = false;
       st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched);
       st.contact_norm = touched ? st.contact_q_S.norm() : 1e300;
@@ -386,7 +390,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
               [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });
     for (int i = 0; i < std::min<int>(options_.num_iterated_starts, s.starts.size()); ++i) {
       if (s.starts[i].contact_norm >= 1e300) break;
-      if (i > 0 && s.OutOfBudget()) break;
+      if ((i > 0 || cross_checking) && (s.OutOfBudget() || (cross_checking && s.BudgetSpent()))) break;
       s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin);
     }
   };
@@ -402,7 +406,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     const Initializer warm_origin = s.best_origin;
     s.best_norm = 1e300;
     s.best_origin = Initializer::kNone;
+    cross_checking = true;
     cold_starts();
+    cross_checking = false;
+    if (s.BudgetSpent()) s.stopped_early = true;  // the check was cut short
     // Take a shorter cold answer unless it points back through the object
     // (more than 120 degrees from the coherent one): a thin wall pushed from
     // one side keeps pushing back, it never flips to the far side.
