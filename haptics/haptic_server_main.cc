@@ -59,14 +59,19 @@ struct Options {
 };
 
 std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCounts& rx) {
-  char line[768];
+  char line[1536];
   std::snprintf(line, sizeof(line),
                 "haptic_server summary: ticks=%lld elapsed_s=%.3f rate_hz=%.1f deadline_misses=%lld "
                 "jitter_p99_us=%.1f compute_p99_us=%.1f compute_max_us=%.1f poses_received=%lld "
                 "poses_rejected=%lld poses_dropped=%lld messages_malformed=%lld "
                 "poses_out_of_order=%lld pose_seq_skipped=%lld pose_time_backwards=%lld "
                 "force_saturations=%lld rate_limited=%lld watchdog_trips=%lld pd_invalid=%lld "
-                "nonfinite_outputs=%lld realtime=%d pose_wait_p50_us=%.1f pose_wait_p99_us=%.1f",
+                "nonfinite_outputs=%lld realtime=%d pose_wait_p50_us=%.1f pose_wait_p99_us=%.1f "
+                "compute_p50_us=%.1f misses_compute=%lld misses_late_wakeup=%lld late_wakeups=%lld "
+                "wake_latency_p50_us=%.1f wake_latency_p99_us=%.1f wake_latency_max_us=%.1f "
+                "geometry_thread=%d pd_update_rate_hz=%.1f model_age_p50_ticks=%.0f "
+                "model_age_p99_ticks=%.0f model_age_max_ticks=%.0f pd_held_ticks=%lld "
+                "model_stale_ticks=%lld geometry_async_ticks=%lld",
                 static_cast<long long>(s.ticks), s.elapsed_s, s.achieved_rate_hz,
                 static_cast<long long>(s.deadline_misses), s.jitter_p99_us, s.compute_p99_us,
                 s.compute_max_us, static_cast<long long>(rx.received),
@@ -79,7 +84,14 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 static_cast<long long>(s.renderer.watchdog_trips),
                 static_cast<long long>(s.renderer.pd_invalid),
                 static_cast<long long>(s.renderer.limiter.nonfinite), s.realtime ? 1 : 0,
-                s.pose_wait_p50_us, s.pose_wait_p99_us);
+                s.pose_wait_p50_us, s.pose_wait_p99_us, s.compute_p50_us,
+                static_cast<long long>(s.misses_compute), static_cast<long long>(s.misses_late_wakeup),
+                static_cast<long long>(s.late_wakeups), s.wake_latency_p50_us, s.wake_latency_p99_us,
+                s.wake_latency_max_us, s.geometry_thread ? 1 : 0, s.pd_update_rate_hz,
+                s.model_age_p50_ticks, s.model_age_p99_ticks, s.model_age_max_ticks,
+                static_cast<long long>(s.renderer.pd_held_ticks),
+                static_cast<long long>(s.renderer.model_stale_ticks),
+                static_cast<long long>(s.renderer.geometry_async_ticks));
   return line;
 }
 
@@ -138,6 +150,7 @@ int Serve(const Options& opt, sigset_t* signals) {
   loop_options.status_rate_hz = config.servo.status_rate_hz;
   loop_options.phase_lock.enabled = config.servo.phase_lock;
   loop_options.phase_lock.target_us = config.servo.phase_lock_target_us;
+  loop_options.geometry.cpu = config.contact.geometry_cpu;
   std::unique_ptr<haptics::TickLog> tick_log;
   if (!opt.timing_log.empty()) {
     // Fail now, not after the run, if the file cannot be written.

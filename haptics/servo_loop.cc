@@ -36,18 +36,31 @@ ServoLoop::ServoLoop(HapticRenderer* renderer, LatestValue<PoseSample>* poses, W
                      const ServoLoopOptions& options)
     : renderer_(renderer), poses_(poses), sink_(sink), options_(options),
       window_jitter_us_(WindowTicks(options)), window_compute_us_(WindowTicks(options)),
+      window_wake_us_(WindowTicks(options)), window_age_(WindowTicks(options)),
       phase_lock_(options.phase_lock, 1e6 / options.rate_hz) {}
 
 ServoLoop::~ServoLoop() { Stop(); }
 
 void ServoLoop::Start() {
   stop_ = false;
+  if (renderer_->wants_geometry_thread()) {
+    GeometryThreadOptions g = options_.geometry;
+    if (g.cpu < 0 && options_.cpu >= 0 && NumCpus() >= 2) g.cpu = options_.cpu == 0 ? 1 : 0;
+    if (g.cpu >= NumCpus()) g.cpu = -1;
+    geometry_thread_ = std::make_unique<GeometryThread>(&renderer_->geometry_worker(), g);
+    renderer_->set_geometry_worker_running(true);
+    geometry_thread_->Start();
+  }
   thread_ = std::thread([this] { Run(); });
 }
 
 void ServoLoop::Stop() {
   stop_ = true;
   if (thread_.joinable()) thread_.join();
+  if (geometry_thread_) {
+    geometry_thread_->Stop();
+    renderer_->set_geometry_worker_running(false);
+  }
 }
 
 void ServoLoop::SetUpThread() {
@@ -84,6 +97,11 @@ void ServoLoop::Run() {
   while (!stop_.load(std::memory_order_relaxed)) {
     SleepUntil(next);
     const int64_t wake = NowNs();
+    const int64_t scheduled = next;
+    const double wake_late_us = static_cast<double>(std::max<int64_t>(0, wake - scheduled)) * 1e-3;
+    window_wake_us_.Add(wake_late_us);
+    wake_hist_.Add(wake_late_us);
+    if (wake_late_us >= options_.late_wakeup_us) ++late_wakeups_;
     if (prev_wake >= 0) {
       period_us = static_cast<double>(wake - prev_wake) * 1e-3;
       const double jitter_us = std::abs(static_cast<double>(wake - prev_wake - period_ns)) * 1e-3;
@@ -96,6 +114,10 @@ void ServoLoop::Run() {
     const PoseSample* pose = poses_->TakeNewest();
     const WrenchOutput& out = renderer_->Tick(t, pose);
     sink_->Publish(out);
+    if (const int64_t age = renderer_->model_age_ticks(); age >= 0) {
+      window_age_.Add(static_cast<double>(age));
+      age_hist_.Add(static_cast<double>(age));
+    }
     // Follow the device's clock: move the schedule toward a fixed wait after
     // the pose's receipt (the rate stays nominal; see phase_lock.h).
     int64_t phase_shift_ns = 0;
@@ -114,6 +136,12 @@ void ServoLoop::Run() {
     const bool missed = end > next;
     if (missed) {
       ++misses_;
+      // Would it have missed had it woken on time? Then the compute is to blame.
+      if (scheduled + (end - wake) > next) {
+        ++misses_compute_;
+      } else {
+        ++misses_late_;
+      }
       // More than a whole period late: skip the lost slots, do not burst.
       if (end > next + period_ns) next += ((end - next) / period_ns) * period_ns;
     }
@@ -139,11 +167,23 @@ void ServoLoop::PublishStatus(int64_t now_ns, int64_t window_ticks, int64_t wind
   s.jitter_us = window_jitter_us_.Summarize();
   s.compute_us = window_compute_us_.Summarize();
   s.deadline_misses = misses_;
+  s.misses_compute = misses_compute_;
+  s.misses_late_wakeup = misses_late_;
+  s.late_wakeups = late_wakeups_;
+  s.wake_latency_us = window_wake_us_.Summarize();
+  s.model_age_ticks = window_age_.Summarize();
   s.realtime = realtime_;
   s.renderer = renderer_->counts();
+  s.geometry_async = renderer_->geometry_async();
+  s.pd_update_rate_hz = window_ns > 0 ? 1e9 * static_cast<double>(s.renderer.model_updates - window_updates_start_) /
+                                            static_cast<double>(window_ns)
+                                      : 0.0;
+  window_updates_start_ = s.renderer.model_updates;
   status_.Publish();
   window_jitter_us_.Clear();
   window_compute_us_.Clear();
+  window_wake_us_.Clear();
+  window_age_.Clear();
 }
 
 LoopSummary ServoLoop::Summary() const {
@@ -152,6 +192,16 @@ LoopSummary ServoLoop::Summary() const {
   s.elapsed_s = end_ns_ > start_ns_ ? 1e-9 * static_cast<double>(end_ns_ - start_ns_) : 0.0;
   s.achieved_rate_hz = s.elapsed_s > 0.0 ? ticks_ / s.elapsed_s : 0.0;
   s.deadline_misses = misses_;
+  s.misses_compute = misses_compute_;
+  s.misses_late_wakeup = misses_late_;
+  s.late_wakeups = late_wakeups_;
+  s.wake_latency_p50_us = wake_hist_.Percentile(0.50);
+  s.wake_latency_p99_us = wake_hist_.Percentile(0.99);
+  s.wake_latency_max_us = wake_hist_.max();
+  s.model_age_p50_ticks = age_hist_.PercentileFloor(0.50);
+  s.model_age_p99_ticks = age_hist_.PercentileFloor(0.99);
+  s.model_age_max_ticks = age_hist_.max();
+  s.geometry_thread = geometry_thread_ != nullptr;
   s.jitter_p99_us = jitter_hist_.Percentile(0.99);
   s.jitter_max_us = jitter_hist_.max();
   s.compute_p50_us = compute_hist_.Percentile(0.50);
@@ -163,6 +213,7 @@ LoopSummary ServoLoop::Summary() const {
   s.realtime = realtime_;
   s.pinned = pinned_;
   s.renderer = renderer_->counts();
+  s.pd_update_rate_hz = s.elapsed_s > 0.0 ? s.renderer.model_updates / s.elapsed_s : 0.0;
   return s;
 }
 

@@ -15,8 +15,10 @@
 // that preallocated log (timing_stats.h).
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <thread>
 
+#include "haptics/geometry_thread.h"
 #include "haptics/haptic_renderer.h"
 #include "haptics/latest_value.h"
 #include "haptics/phase_lock.h"
@@ -41,6 +43,13 @@ struct ServoLoopOptions {
   double status_rate_hz = 10.0;
   TickLog* tick_log = nullptr;  // optional: one TickRecord per tick (not owned)
   PhaseLockOptions phase_lock;  // tick phase follows pose arrival (phase_lock.h)
+  // The geometry thread, started with the loop when the renderer wants one
+  // (contact.geometry_thread on/auto). cpu -1: the other CPU than `cpu` when
+  // there are two or more, else unpinned.
+  GeometryThreadOptions geometry;
+  // A wake-up this late (us) or later counts as a late wake-up (the same
+  // threshold as the cyclictest floor the loop benchmark counts).
+  double late_wakeup_us = 1000.0;
 };
 
 // One status window (about 1 / status_rate_hz of ticks). Times in us.
@@ -52,6 +61,15 @@ struct LoopStatus {
   TimingSummary jitter_us;        // this window
   TimingSummary compute_us;       // this window
   int64_t deadline_misses = 0;    // total
+  // Of those: the tick's own compute overran its period (ours to fix), or
+  // it woke up so late that even its compute did not fit (the platform's).
+  int64_t misses_compute = 0;     // total
+  int64_t misses_late_wakeup = 0; // total
+  int64_t late_wakeups = 0;       // total wake-ups >= late_wakeup_us late
+  TimingSummary wake_latency_us;  // this window: wake-up - scheduled start
+  TimingSummary model_age_ticks;  // this window: age of the contact model rendered
+  double pd_update_rate_hz = 0.0; // this window: geometry answers taken per second
+  bool geometry_async = false;    // the tick renders the geometry thread's answers
   bool realtime = false;          // SCHED_FIFO granted
   RendererCounts renderer;        // totals
 };
@@ -62,6 +80,12 @@ struct LoopSummary {
   double elapsed_s = 0.0;
   double achieved_rate_hz = 0.0;
   int64_t deadline_misses = 0;
+  int64_t misses_compute = 0, misses_late_wakeup = 0;  // see LoopStatus
+  int64_t late_wakeups = 0;
+  double wake_latency_p50_us = 0.0, wake_latency_p99_us = 0.0, wake_latency_max_us = 0.0;
+  double model_age_p50_ticks = 0.0, model_age_p99_ticks = 0.0, model_age_max_ticks = 0.0;
+  double pd_update_rate_hz = 0.0;  // geometry answers taken per second
+  bool geometry_thread = false;    // a geometry thread ran
   double jitter_p99_us = 0.0, jitter_max_us = 0.0;
   double compute_p50_us = 0.0, compute_p99_us = 0.0, compute_max_us = 0.0;
   bool realtime = false;
@@ -105,8 +129,11 @@ class ServoLoop {
   LatestValue<LoopStatus> status_;
 
   // Loop-thread state (read by others only after join).
-  SampleWindow window_jitter_us_, window_compute_us_;
-  DurationHistogram jitter_hist_, compute_hist_, pose_wait_hist_;
+  SampleWindow window_jitter_us_, window_compute_us_, window_wake_us_, window_age_;
+  DurationHistogram jitter_hist_, compute_hist_, pose_wait_hist_, wake_hist_, age_hist_;
+  std::unique_ptr<GeometryThread> geometry_thread_;
+  int64_t misses_compute_ = 0, misses_late_ = 0, late_wakeups_ = 0;
+  int64_t window_updates_start_ = 0;
   PhaseLock phase_lock_;
   int64_t ticks_ = 0;
   int64_t misses_ = 0;
