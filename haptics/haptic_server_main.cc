@@ -54,6 +54,7 @@ struct Options {
   double duration_s = 0.0;  // 0: until a signal
   bool check = false;
   std::string log_level = "info";
+  std::string geometry_thread;        // overrides contact.geometry_thread (auto|on|off)
   std::string timing_log;             // empty: no per-tick log
   int64_t timing_log_ticks = 600000;  // records preallocated (10 min at 1 kHz)
 };
@@ -71,7 +72,8 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 "wake_latency_p50_us=%.1f wake_latency_p99_us=%.1f wake_latency_max_us=%.1f "
                 "geometry_thread=%d pd_update_rate_hz=%.1f model_age_p50_ticks=%.0f "
                 "model_age_p99_ticks=%.0f model_age_max_ticks=%.0f pd_held_ticks=%lld "
-                "model_stale_ticks=%lld geometry_async_ticks=%lld",
+                "model_stale_ticks=%lld geometry_async_ticks=%lld pose_triggered=%d ticks_by_pose=%lld "
+                "ticks_by_deadline=%lld",
                 static_cast<long long>(s.ticks), s.elapsed_s, s.achieved_rate_hz,
                 static_cast<long long>(s.deadline_misses), s.jitter_p99_us, s.compute_p99_us,
                 s.compute_max_us, static_cast<long long>(rx.received),
@@ -91,13 +93,18 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 s.model_age_p50_ticks, s.model_age_p99_ticks, s.model_age_max_ticks,
                 static_cast<long long>(s.renderer.pd_held_ticks),
                 static_cast<long long>(s.renderer.model_stale_ticks),
-                static_cast<long long>(s.renderer.geometry_async_ticks));
+                static_cast<long long>(s.renderer.geometry_async_ticks), s.pose_triggered ? 1 : 0,
+                static_cast<long long>(s.ticks_by_pose), static_cast<long long>(s.ticks_by_deadline));
   return line;
 }
 
 int Serve(const Options& opt, sigset_t* signals) {
   haptics::SceneConfig config = haptics::LoadSceneConfig(opt.config);
   if (!opt.lcm_url.empty()) config.lcm.url = opt.lcm_url;
+  if (!opt.geometry_thread.empty())
+    config.contact.geometry_thread = opt.geometry_thread == "on"    ? haptics::GeometryThreadMode::kOn
+                                     : opt.geometry_thread == "off" ? haptics::GeometryThreadMode::kOff
+                                                                    : haptics::GeometryThreadMode::kAuto;
   const haptics::SceneModels models = haptics::BuildSceneModels(config, opt.cache_dir);
   spdlog::info("scene '{}': tool {}, {} objects, device {} ({} N, {} N·m), {} Hz",
                config.name, models.tool->Describe(), models.objects.size(),
@@ -151,6 +158,13 @@ int Serve(const Options& opt, sigset_t* signals) {
   loop_options.phase_lock.enabled = config.servo.phase_lock;
   loop_options.phase_lock.target_us = config.servo.phase_lock_target_us;
   loop_options.geometry.cpu = config.contact.geometry_cpu;
+  // Pose-triggered ticks: the receiver wakes the loop when a pose arrives.
+  haptics::ArrivalSignal arrivals;
+  loop_options.trigger =
+      config.servo.pose_triggered ? haptics::TickTrigger::kPose : haptics::TickTrigger::kFixedRate;
+  loop_options.arrivals = &arrivals;
+  loop_options.pose_window_us = config.servo.pose_window_us;
+  receiver.set_arrival_signal(&arrivals);
   std::unique_ptr<haptics::TickLog> tick_log;
   if (!opt.timing_log.empty()) {
     // Fail now, not after the run, if the file cannot be written.
@@ -234,6 +248,9 @@ int main(int argc, char** argv) {
                  "directory of the mesh precomputation cache, overrides cache_dir of the config");
   app.add_option("--duration", opt.duration_s, "stop after this many seconds (default: run until SIGINT/SIGTERM)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--geometry-thread", opt.geometry_thread,
+                 "where PD queries run, overrides contact.geometry_thread of the config")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   app.add_flag("--check", opt.check, "load and validate the config, build the scene, then exit");
   app.add_option("--log-level", opt.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));

@@ -45,6 +45,10 @@ class LatestValue {
     for (Slot& slot : slots_) f(slot.value);
   }
 
+  // Reader: whether a value was published since the last TakeNewest (a
+  // peek; only the reader clears it).
+  bool HasNew() const { return (middle_.load(std::memory_order_acquire) & kFresh) != 0; }
+
   // Reader: the newest value if one was published since the previous call,
   // else nullptr. The pointee stays valid and unchanged until the next call.
   const T* TakeNewest() {

@@ -103,6 +103,7 @@ void PoseReceiver::OnMessage(const void* data, int size) {
   slot.receive_time_ns = MonotonicNanos();
   if (out_->Publish()) dropped_.fetch_add(1, std::memory_order_relaxed);
   received_.fetch_add(1, std::memory_order_relaxed);
+  if (arrivals_ != nullptr) arrivals_->Notify();  // pose-triggered tick
 }
 
 ReceiverCounts PoseReceiver::counts() const {

@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "haptics/arrival_signal.h"
 #include "haptics/latest_value.h"
 #include "haptics/pose_sample.h"
 #include "haptics/pose_sequence.h"
@@ -61,6 +62,8 @@ class PoseReceiver {
   void OnMessage(const void* data, int size);
 
   ReceiverCounts counts() const;
+  // Notified after every pose handed over (before StartThread; not owned).
+  void set_arrival_signal(ArrivalSignal* arrivals) { arrivals_ = arrivals; }
 
  private:
   static void Handle(const lcm::ReceiveBuffer* rbuf, const std::string& channel, PoseReceiver* self);
@@ -68,6 +71,7 @@ class PoseReceiver {
   lcm::LCM* lcm_;
   std::string channel_;
   LatestValue<PoseSample>* out_;
+  ArrivalSignal* arrivals_ = nullptr;
   lcm::Subscription* subscription_ = nullptr;
   std::thread thread_;
   std::atomic<bool> stop_{false};

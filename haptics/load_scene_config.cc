@@ -178,6 +178,9 @@ ServoConfig ReadServo(const YamlMap& m) {
   // Below half a period, so a pose arriving on time never waits a whole one.
   s.phase_lock_target_us = m.NumberOr("phase_lock_target_us", 150.0,
                                       Range::Closed(0.0, 0.5e6 / s.rate_hz, "us"));
+  if (m.Has("tick_trigger"))
+    s.pose_triggered = m.Choice("tick_trigger", {"pose", "fixed_rate"}) == "pose";
+  s.pose_window_us = m.NumberOr("pose_window_us", 400.0, Range::Closed(0.0, 0.5e6 / s.rate_hz, "us"));
   m.WarnUnknownKeys();
   return s;
 }

@@ -130,6 +130,11 @@ struct ServoConfig {
   // waits about phase_lock_target_us (us) for the tick instead of 0..1 period.
   bool phase_lock = true;
   double phase_lock_target_us = 150.0;
+  // What starts a tick (servo_loop.h, TickTrigger): the pose's arrival
+  // (default; within pose_window_us before the deadline) or the fixed-rate
+  // deadline only.
+  bool pose_triggered = true;
+  double pose_window_us = 400.0;
 };
 
 struct LcmConfig {

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <time.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <string>
@@ -30,6 +31,14 @@ size_t WindowTicks(const ServoLoopOptions& o) {
   return static_cast<size_t>(std::max(1.0, std::round(o.rate_hz / o.status_rate_hz)));
 }
 
+// Pose-triggered ticks lock the pose's arrival to the middle of the window.
+PhaseLockOptions PhaseLockFor(const ServoLoopOptions& o) {
+  PhaseLockOptions p = o.phase_lock;
+  if (o.trigger == TickTrigger::kPose && o.arrivals != nullptr)
+    p.target_us = std::min(0.5 * o.pose_window_us, 0.25e6 / o.rate_hz);
+  return p;
+}
+
 }  // namespace
 
 ServoLoop::ServoLoop(HapticRenderer* renderer, LatestValue<PoseSample>* poses, WrenchSink* sink,
@@ -37,7 +46,7 @@ ServoLoop::ServoLoop(HapticRenderer* renderer, LatestValue<PoseSample>* poses, W
     : renderer_(renderer), poses_(poses), sink_(sink), options_(options),
       window_jitter_us_(WindowTicks(options)), window_compute_us_(WindowTicks(options)),
       window_wake_us_(WindowTicks(options)), window_age_(WindowTicks(options)),
-      phase_lock_(options.phase_lock, 1e6 / options.rate_hz) {}
+      phase_lock_(PhaseLockFor(options), 1e6 / options.rate_hz) {}
 
 ServoLoop::~ServoLoop() { Stop(); }
 
@@ -94,14 +103,22 @@ void ServoLoop::Run() {
   double period_us = 0.0;
   int64_t window_start = start_ns_;
   int64_t window_ticks = 0;
+  const bool by_pose_mode = options_.trigger == TickTrigger::kPose && options_.arrivals != nullptr;
+  const int64_t window_ns = std::clamp<int64_t>(std::llround(options_.pose_window_us * 1e3), 0, period_ns / 2);
   while (!stop_.load(std::memory_order_relaxed)) {
-    SleepUntil(next);
+    bool by_pose = false;
+    int64_t open = next;
+    if (by_pose_mode) {
+      // The window opens pose_window_us before the deadline; a pose waiting
+      // or arriving in it starts the tick, else the deadline does.
+      open = next - window_ns;
+      SleepUntil(open);
+      const uint32_t seen = options_.arrivals->count();
+      by_pose = poses_->HasNew() || options_.arrivals->WaitUntil(seen, next);
+    } else {
+      SleepUntil(next);
+    }
     const int64_t wake = NowNs();
-    const int64_t scheduled = next;
-    const double wake_late_us = static_cast<double>(std::max<int64_t>(0, wake - scheduled)) * 1e-3;
-    window_wake_us_.Add(wake_late_us);
-    wake_hist_.Add(wake_late_us);
-    if (wake_late_us >= options_.late_wakeup_us) ++late_wakeups_;
     if (prev_wake >= 0) {
       period_us = static_cast<double>(wake - prev_wake) * 1e-3;
       const double jitter_us = std::abs(static_cast<double>(wake - prev_wake - period_ns)) * 1e-3;
@@ -109,9 +126,17 @@ void ServoLoop::Run() {
       jitter_hist_.Add(jitter_us);
     }
     prev_wake = wake;
-
     const double t = static_cast<double>(next - start_ns_) * 1e-9;
     const PoseSample* pose = poses_->TakeNewest();
+    by_pose = by_pose && pose != nullptr;
+    ++(by_pose ? ticks_by_pose_ : ticks_by_deadline_);
+    // When the tick should have started: at the window's opening, the pose's
+    // arrival if later, or the deadline.
+    const int64_t scheduled = by_pose ? std::max(open, pose->receive_time_ns) : next;
+    const double wake_late_us = static_cast<double>(std::max<int64_t>(0, wake - scheduled)) * 1e-3;
+    window_wake_us_.Add(wake_late_us);
+    wake_hist_.Add(wake_late_us);
+    if (wake_late_us >= options_.late_wakeup_us) ++late_wakeups_;
     const WrenchOutput& out = renderer_->Tick(t, pose);
     sink_->Publish(out);
     if (const int64_t age = renderer_->model_age_ticks(); age >= 0) {
@@ -124,7 +149,18 @@ void ServoLoop::Run() {
     if (pose != nullptr && pose->receive_time_ns > 0 && pose->receive_time_ns <= wake) {
       const double wait_us = static_cast<double>(wake - pose->receive_time_ns) * 1e-3;
       pose_wait_hist_.Add(wait_us);
-      phase_shift_ns = std::llround(phase_lock_.Update(wait_us) * 1e3);
+      if (by_pose_mode) {
+        // Lock the deadline to the arrivals: the pose should come in the
+        // middle of the window. Its lead on the deadline, taken modulo the
+        // period (a pose that just missed a deadline shows as a large lead
+        // at the next tick; it means "later", not "earlier").
+        double lead_us = static_cast<double>(next - pose->receive_time_ns) * 1e-3;
+        const double period_us = static_cast<double>(period_ns) * 1e-3;
+        if (lead_us > 0.5 * period_us) lead_us -= period_us;
+        phase_shift_ns = std::llround(phase_lock_.Update(lead_us) * 1e3);
+      } else {
+        phase_shift_ns = std::llround(phase_lock_.Update(wait_us) * 1e3);
+      }
     }
 
     const int64_t end = NowNs();
@@ -202,6 +238,9 @@ LoopSummary ServoLoop::Summary() const {
   s.model_age_p99_ticks = age_hist_.PercentileFloor(0.99);
   s.model_age_max_ticks = age_hist_.max();
   s.geometry_thread = geometry_thread_ != nullptr;
+  s.pose_triggered = options_.trigger == TickTrigger::kPose && options_.arrivals != nullptr;
+  s.ticks_by_pose = ticks_by_pose_;
+  s.ticks_by_deadline = ticks_by_deadline_;
   s.jitter_p99_us = jitter_hist_.Percentile(0.99);
   s.jitter_max_us = jitter_hist_.max();
   s.compute_p50_us = compute_hist_.Percentile(0.50);

@@ -18,6 +18,7 @@
 #include <memory>
 #include <thread>
 
+#include "haptics/arrival_signal.h"
 #include "haptics/geometry_thread.h"
 #include "haptics/haptic_renderer.h"
 #include "haptics/latest_value.h"
@@ -36,6 +37,21 @@ class WrenchSink {
   virtual void Publish(const WrenchOutput& output) = 0;
 };
 
+// What starts a tick.
+enum class TickTrigger {
+  // Default: the tick that renders a pose starts when the pose arrives (its
+  // arrival wakes the loop through an ArrivalSignal), at most once per period:
+  // a pose arriving up to pose_window_us before the tick's deadline starts
+  // it; the deadline starts it when no pose comes. The deadlines keep the
+  // fixed rate; the phase lock moves them (<= max_step_us per tick) so that
+  // poses arrive mid-window: the tick's phase follows the pose, the rate stays
+  // nominal for a missing or bursty sender.
+  kPose,
+  // Fixed-rate deadlines only (the phase lock still moves them so that the
+  // newest pose waits about phase_lock.target_us).
+  kFixedRate,
+};
+
 struct ServoLoopOptions {
   double rate_hz = 1000.0;
   int cpu = -1;                 // -1: no pinning
@@ -43,6 +59,9 @@ struct ServoLoopOptions {
   double status_rate_hz = 10.0;
   TickLog* tick_log = nullptr;  // optional: one TickRecord per tick (not owned)
   PhaseLockOptions phase_lock;  // tick phase follows pose arrival (phase_lock.h)
+  TickTrigger trigger = TickTrigger::kPose;
+  ArrivalSignal* arrivals = nullptr;  // kPose needs it (not owned); without it: fixed rate
+  double pose_window_us = 400.0;      // kPose: how early before the deadline a pose may start its tick
   // The geometry thread, started with the loop when the renderer wants one
   // (contact.geometry_thread on/auto). cpu -1: the other CPU than `cpu` when
   // there are two or more, else unpinned.
@@ -94,6 +113,9 @@ struct LoopSummary {
   // pose-to-wrench latency the loop adds (phase_lock.h keeps it near its target).
   int64_t poses_taken = 0;
   double pose_wait_p50_us = 0.0, pose_wait_p99_us = 0.0;
+  bool pose_triggered = false;     // TickTrigger::kPose was in effect
+  int64_t ticks_by_pose = 0;       // ticks a pose arrival started
+  int64_t ticks_by_deadline = 0;   // ticks the deadline started
   RendererCounts renderer;
 };
 
@@ -134,6 +156,7 @@ class ServoLoop {
   std::unique_ptr<GeometryThread> geometry_thread_;
   int64_t misses_compute_ = 0, misses_late_ = 0, late_wakeups_ = 0;
   int64_t window_updates_start_ = 0;
+  int64_t ticks_by_pose_ = 0, ticks_by_deadline_ = 0;
   PhaseLock phase_lock_;
   int64_t ticks_ = 0;
   int64_t misses_ = 0;
