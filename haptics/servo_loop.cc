@@ -104,6 +104,8 @@ void ServoLoop::Run() {
   int64_t window_start = start_ns_;
   int64_t window_ticks = 0;
   const bool by_pose_mode = options_.trigger == TickTrigger::kPose && options_.arrivals != nullptr;
+  bool previous_took_pose = false;
+  int64_t previous_deadline = 0;
   const int64_t window_ns = std::clamp<int64_t>(std::llround(options_.pose_window_us * 1e3), 0, period_ns / 2);
   while (!stop_.load(std::memory_order_relaxed)) {
     bool by_pose = false;
@@ -151,12 +153,14 @@ void ServoLoop::Run() {
       pose_wait_hist_.Add(wait_us);
       if (by_pose_mode) {
         // Lock the deadline to the arrivals: the pose should come in the
-        // middle of the window. Its lead on the deadline, taken modulo the
-        // period (a pose that just missed a deadline shows as a large lead
-        // at the next tick; it means "later", not "earlier").
+        // middle of the window. Its lead on the deadline: beyond the window
+        // it waited for the window to open (move earlier), except a pose
+        // that just missed the previous deadline, which ticked without one:
+        // that pose came late (move later).
         double lead_us = static_cast<double>(next - pose->receive_time_ns) * 1e-3;
         const double period_us = static_cast<double>(period_ns) * 1e-3;
-        if (lead_us > 0.5 * period_us) lead_us -= period_us;
+        if (!previous_took_pose && pose->receive_time_ns > previous_deadline && lead_us > 0.5 * period_us)
+          lead_us -= period_us;
         phase_shift_ns = std::llround(phase_lock_.Update(lead_us) * 1e3);
       } else {
         phase_shift_ns = std::llround(phase_lock_.Update(wait_us) * 1e3);
@@ -168,6 +172,8 @@ void ServoLoop::Run() {
     window_compute_us_.Add(compute_us);
     compute_hist_.Add(compute_us);
     ++ticks_;
+    previous_took_pose = pose != nullptr;
+    previous_deadline = next;
     next += period_ns + phase_shift_ns;  // this tick's deadline: the next tick's start
     const bool missed = end > next;
     if (missed) {
