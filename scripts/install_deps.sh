@@ -10,6 +10,7 @@ PKGS=(
   gnuplot-nox
   libcgal-demo assimp-testmodels
   iproute2 util-linux jq
+  rt-tests  # cyclictest: the platform's late wake-ups beside the loop benchmark
   clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer
 )
 missing=()
