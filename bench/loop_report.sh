@@ -107,10 +107,10 @@ for run in "${RUNS[@]}"; do
   if [[ -s "$d/cyclictest.txt" ]]; then
     read -r ctc ctl ctmax < <(awk '/^# Total:/ { c = $3 } /^# Max Latencies:/ { m = $4 + 0 } /^# Histogram Overflows:/ { o = $4 + 0 }
       !/^#/ && NF >= 2 && $1 + 0 >= 1000 { l += $2 } END { printf "%d %d %d\n", c, l + o, m }' "$d/cyclictest.txt")
-    ctm=$(awk -v c="$ctc" -v l="$ctl" 'BEGIN { printf "%.1f", c > 0 ? l / (c / 60000) : 0 }')
+    ctm=$(awk -v c="$ctc" -v l="$ctl" 'BEGIN { printf "%.1f", (c > 0 ? l / (c / 60000) : 0) }')
   fi
   el=$(sv elapsed_s); lw=$(sv late_wakeups)
-  [[ "$el" != - && "$lw" != - ]] && lpm=$(awk -v l="$lw" -v e="$el" 'BEGIN { printf "%.1f", e > 0 ? l / (e / 60) : 0 }')
+  [[ "$el" != - && "$lw" != - ]] && lpm=$(awk -v l="$lw" -v e="$el" 'BEGIN { printf "%.1f", (e > 0 ? l / (e / 60) : 0) }')
   r50=- target=- frms=- fmax=-
   [[ -s "$d/summary.json" ]] && r50=$(jq -r '.latency_us.p50' "$d/summary.json")
   c50=$(sv compute_p50_us)

@@ -81,8 +81,14 @@ void GeometryThread::Stop() {
 void GeometryThread::Run() {
   NameThisThread("geometry");
   std::string why;
-  if (options_.realtime_priority > 0 && !TrySetFifoScheduling(options_.realtime_priority, &why))
-    spdlog::warn("geometry thread: no real-time scheduling ({})", why);
+  // The server's threads inherit SCHED_FIFO from main; a query of hundreds
+  // of milliseconds at a real-time priority would starve the rest of its CPU.
+  if (options_.realtime_priority > 0) {
+    if (!TrySetFifoScheduling(options_.realtime_priority, &why))
+      spdlog::warn("geometry thread: no real-time scheduling ({})", why);
+  } else if (!TrySetNormalScheduling(&why)) {
+    spdlog::warn("geometry thread: {}", why);
+  }
   if (options_.cpu >= 0) {
     pinned_ = TryPinToCpu(options_.cpu, &why);
     if (pinned_) {

@@ -81,6 +81,9 @@ class GeometryThread {
 
   void Start();
   void Stop();  // after the current query; idempotent
+  // Asks the thread to stop after its current query without waiting for it
+  // (a PolyDepth query can take long); Stop() or the destructor joins.
+  void RequestStop() { stop_ = true; }
   bool pinned() const { return pinned_; }
 
  private:

@@ -91,8 +91,8 @@ struct ContactConfig {
   double sync_budget = 0.25;        // auto: fraction of the servo period queries may take in the tick
   int geometry_cpu = -1;            // pin the geometry thread (-1: the other CPU than servo.cpu, if any)
   double invalid_hold_s = 0.2;      // hold-last-valid: decay of a held contact (configured in ms)
-  double model_max_age_s = 0.1;     // an older contact model ramps out (configured in ms)
-  double model_age_ramp_s = 0.05;   // ... to zero over this time (configured in ms)
+  double model_max_age_s = 0.25;    // an older contact model ramps out (configured in ms)
+  double model_age_ramp_s = 0.25;   // ... to zero over this time (configured in ms)
 };
 
 struct CouplingConfig {

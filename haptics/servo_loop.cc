@@ -48,7 +48,13 @@ ServoLoop::ServoLoop(HapticRenderer* renderer, LatestValue<PoseSample>* poses, W
       window_wake_us_(WindowTicks(options)), window_age_(WindowTicks(options)),
       phase_lock_(PhaseLockFor(options), 1e6 / options.rate_hz) {}
 
-ServoLoop::~ServoLoop() { Stop(); }
+ServoLoop::~ServoLoop() {
+  Stop();
+  if (geometry_thread_) {
+    geometry_thread_->Stop();
+    renderer_->set_geometry_worker_running(false);
+  }
+}
 
 void ServoLoop::Start() {
   stop_ = false;
@@ -66,10 +72,9 @@ void ServoLoop::Start() {
 void ServoLoop::Stop() {
   stop_ = true;
   if (thread_.joinable()) thread_.join();
-  if (geometry_thread_) {
-    geometry_thread_->Stop();
-    renderer_->set_geometry_worker_running(false);
-  }
+  // The geometry thread finishes its query in its own time (it may take
+  // long); the destructor joins it. Summary() does not need it.
+  if (geometry_thread_) geometry_thread_->RequestStop();
 }
 
 void ServoLoop::SetUpThread() {
@@ -105,6 +110,7 @@ void ServoLoop::Run() {
   int64_t window_ticks = 0;
   const bool by_pose_mode = options_.trigger == TickTrigger::kPose && options_.arrivals != nullptr;
   bool previous_took_pose = false;
+  int64_t phase_offset_ns = 0;  // sum of the phase lock's shifts
   int64_t previous_deadline = 0;
   const int64_t window_ns = std::clamp<int64_t>(std::llround(options_.pose_window_us * 1e3), 0, period_ns / 2);
   while (!stop_.load(std::memory_order_relaxed)) {
@@ -172,6 +178,11 @@ void ServoLoop::Run() {
     window_compute_us_.Add(compute_us);
     compute_hist_.Add(compute_us);
     ++ticks_;
+    // The phase follows the pose, never the rate: the deadlines stay within
+    // half a period of the nominal grid, so over a run the tick count is the
+    // nominal rate times the time whatever the sender's clock does.
+    phase_shift_ns = std::clamp(phase_shift_ns, -period_ns / 2 - phase_offset_ns, period_ns / 2 - phase_offset_ns);
+    phase_offset_ns += phase_shift_ns;
     previous_took_pose = pose != nullptr;
     previous_deadline = next;
     next += period_ns + phase_shift_ns;  // this tick's deadline: the next tick's start

@@ -150,7 +150,7 @@ TEST_F(ConfigTest, GeometryThreadHoldAgeingAndTickTrigger) {
   SceneConfig c = LoadSceneConfig(Write(kScene));
   EXPECT_EQ(c.contact.geometry_thread, GeometryThreadMode::kAuto);
   EXPECT_DOUBLE_EQ(c.contact.invalid_hold_s, 0.2);
-  EXPECT_DOUBLE_EQ(c.contact.model_max_age_s, 0.1);
+  EXPECT_DOUBLE_EQ(c.contact.model_max_age_s, 0.25);
   EXPECT_TRUE(c.servo.pose_triggered);
   c = LoadSceneConfig(Write(kScene, "  damping: 5.0\ncoupling",
                             "  damping: 5.0\n  geometry_thread: on\n  invalid_hold_ms: 50\n"
