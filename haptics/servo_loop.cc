@@ -139,8 +139,9 @@ void ServoLoop::Run() {
     by_pose = by_pose && pose != nullptr;
     ++(by_pose ? ticks_by_pose_ : ticks_by_deadline_);
     // When the tick should have started: at the window's opening, the pose's
-    // arrival if later, or the deadline.
-    const int64_t scheduled = by_pose ? std::max(open, pose->receive_time_ns) : next;
+    // arrival if later, the deadline at the latest (a pose that came while
+    // the loop was not running does not excuse its late start).
+    const int64_t scheduled = by_pose ? std::min(next, std::max(open, pose->receive_time_ns)) : next;
     const double wake_late_us = static_cast<double>(std::max<int64_t>(0, wake - scheduled)) * 1e-3;
     window_wake_us_.Add(wake_late_us);
     wake_hist_.Add(wake_late_us);

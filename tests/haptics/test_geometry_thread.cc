@@ -22,6 +22,7 @@
 
 #include "haptics/haptic_renderer.h"
 #include "haptics/servo_loop.h"
+#include "alloc_counter.h"
 #include "haptics/wrench_output.h"
 #include "haptics_test_util.h"
 
@@ -61,6 +62,35 @@ TEST(GeometryWorker, AnswersTheNewestPoseOnly) {
   EXPECT_NEAR(answer->pairs[0].depth, 0.003, 1e-9);
   EXPECT_EQ(worker.TakeAnswer(), nullptr);
   EXPECT_EQ(worker.queries(), 1);
+}
+
+// Neither hot loop allocates once warm: the servo tick with the geometry on
+// the worker (post, take the answer, evaluate the model) and the worker's
+// query (driven here on the same thread, every third tick, so both count).
+TEST(GeometryWorker, NeitherLoopAllocatesAfterWarmUp) {
+  const SceneConfig config = ThreadedBoxOnBox();
+  const SceneModels models = BuildSceneModels(config);
+  HapticRenderer renderer(config, models);
+  renderer.set_geometry_worker_running(true);
+  ASSERT_TRUE(renderer.geometry_async());
+  double t = 0.0;
+  int64_t seq = 0;
+  auto run = [&] {
+    for (int i = 0; i < 300; ++i) {
+      const Quaternion q(Eigen::AngleAxisd(0.002 * i, Vector3(1, 1, 0).normalized()));
+      const PoseSample pose = test::MakePose(++seq, Vector3(0.0001 * i, 0, 0.02 - 0.0001 * i), q);
+      renderer.Tick(t, &pose);
+      t += renderer.dt();
+      if (i % 3 == 0) renderer.geometry_worker().RunOnce();
+    }
+  };
+  run();
+  const int64_t before = test::ThreadAllocations();
+  run();
+  EXPECT_EQ(test::ThreadAllocations() - before, 0);
+  EXPECT_GT(renderer.counts().model_updates, 150);
+  EXPECT_GT(renderer.contact().num_in_contact, 0);
+  renderer.set_geometry_worker_running(false);
 }
 
 class TimedSink final : public WrenchSink {
