@@ -70,12 +70,22 @@ GeometryThread::~GeometryThread() { Stop(); }
 
 void GeometryThread::Start() {
   stop_ = false;
+  finished_ = false;
   thread_ = std::thread([this] { Run(); });
 }
 
 void GeometryThread::Stop() {
   stop_ = true;
   if (thread_.joinable()) thread_.join();
+}
+
+bool GeometryThread::WaitFinished(double timeout_s) const {
+  const int64_t until = NowNs() + static_cast<int64_t>(timeout_s * 1e9);
+  while (!finished_.load()) {
+    if (NowNs() >= until) return false;
+    SleepUntilNs(NowNs() + 1'000'000);
+  }
+  return true;
 }
 
 void GeometryThread::Run() {
@@ -102,6 +112,7 @@ void GeometryThread::Run() {
     const int64_t start = NowNs();
     if (!worker_->RunOnce(options_.min_query_time_s)) SleepUntilNs(start + idle_ns);
   }
+  finished_ = true;
 }
 
 }  // namespace haptics

@@ -84,6 +84,9 @@ class GeometryThread {
   // Asks the thread to stop after its current query without waiting for it
   // (a PolyDepth query can take long); Stop() or the destructor joins.
   void RequestStop() { stop_ = true; }
+  // After RequestStop: waits up to timeout_s for the thread to finish its
+  // query; true if it has (then Stop() joins at once).
+  bool WaitFinished(double timeout_s) const;
   bool pinned() const { return pinned_; }
 
  private:
@@ -92,6 +95,7 @@ class GeometryThread {
   GeometryThreadOptions options_;
   std::thread thread_;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> finished_{true};
   bool pinned_ = false;
 };
 

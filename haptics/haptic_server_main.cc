@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -230,6 +231,14 @@ int Serve(const Options& opt, sigset_t* signals) {
     }
     spdlog::info("timing log {}: {} ticks ({} not logged: --timing-log-ticks {})", opt.timing_log,
                  tick_log->size(), tick_log->not_logged(), opt.timing_log_ticks);
+  }
+  // A PolyDepth query on the geometry thread can take seconds on large
+  // meshes; everything is written, so do not wait for it to end.
+  if (!loop.WaitGeometryFinished(2.0)) {
+    spdlog::warn("geometry thread still in a query 2 s after the stop; exiting without it");
+    spdlog::default_logger()->flush();
+    std::fflush(nullptr);
+    std::_Exit(kExitOk);
   }
   return kExitOk;
 }

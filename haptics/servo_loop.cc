@@ -180,9 +180,10 @@ void ServoLoop::Run() {
     compute_hist_.Add(compute_us);
     ++ticks_;
     // The phase follows the pose, never the rate: the deadlines stay within
-    // half a period of the nominal grid, so over a run the tick count is the
-    // nominal rate times the time whatever the sender's clock does.
-    phase_shift_ns = std::clamp(phase_shift_ns, -period_ns / 2 - phase_offset_ns, period_ns / 2 - phase_offset_ns);
+    // a period of the nominal grid (any phase is reachable), so over a run
+    // the tick count is the nominal rate times the time, within one tick,
+    // whatever the sender's clock does.
+    phase_shift_ns = std::clamp(phase_shift_ns, -period_ns - phase_offset_ns, period_ns - phase_offset_ns);
     phase_offset_ns += phase_shift_ns;
     previous_took_pose = pose != nullptr;
     previous_deadline = next;

@@ -129,8 +129,14 @@ class ServoLoop {
   ServoLoop& operator=(const ServoLoop&) = delete;
 
   void Start();
-  // Stops after the current tick and joins. Idempotent.
+  // Stops after the current tick and joins. Idempotent. The geometry thread
+  // is asked to stop; the destructor joins it.
   void Stop();
+  // After Stop: waits up to timeout_s for the geometry thread to finish its
+  // query (true at once without one).
+  bool WaitGeometryFinished(double timeout_s) const {
+    return !geometry_thread_ || geometry_thread_->WaitFinished(timeout_s);
+  }
 
   // Reader side for the main thread (single reader).
   LatestValue<LoopStatus>& status() { return status_; }
