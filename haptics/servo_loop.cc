@@ -111,6 +111,7 @@ void ServoLoop::Run() {
   const bool by_pose_mode = options_.trigger == TickTrigger::kPose && options_.arrivals != nullptr;
   bool previous_took_pose = false;
   int64_t phase_offset_ns = 0;  // sum of the phase lock's shifts
+  int64_t last_receipt_ns = 0, last_utime_us = 0;  // of the last pose taken
   int64_t previous_deadline = 0;
   const int64_t window_ns = std::clamp<int64_t>(std::llround(options_.pose_window_us * 1e3), 0, period_ns / 2);
   while (!stop_.load(std::memory_order_relaxed)) {
@@ -158,6 +159,9 @@ void ServoLoop::Run() {
     if (pose != nullptr && pose->receive_time_ns > 0 && pose->receive_time_ns <= wake) {
       const double wait_us = static_cast<double>(wake - pose->receive_time_ns) * 1e-3;
       pose_wait_hist_.Add(wait_us);
+      const int64_t previous_receipt = last_receipt_ns, previous_utime = last_utime_us;
+      last_receipt_ns = pose->receive_time_ns;
+      last_utime_us = pose->utime;
       if (by_pose_mode) {
         // Lock the deadline to the arrivals: the pose should come in the
         // middle of the window. Its lead on the deadline: beyond the window
@@ -168,7 +172,14 @@ void ServoLoop::Run() {
         const double period_us = static_cast<double>(period_ns) * 1e-3;
         if (!previous_took_pose && pose->receive_time_ns > previous_deadline && lead_us > 0.5 * period_us)
           lead_us -= period_us;
-        phase_shift_ns = std::llround(phase_lock_.Update(lead_us) * 1e3);
+        // Transport only ever delays: a pose that came much closer after the
+        // previous one than the sender sent them follows a delayed one (a
+        // burst); its earliness says nothing about the sender's phase, and
+        // counting it would pull the deadlines earlier after every stall.
+        const double receipt_gap_us = static_cast<double>(pose->receive_time_ns - previous_receipt) * 1e-3;
+        const double send_gap_us = static_cast<double>(pose->utime - previous_utime);
+        const bool after_burst = previous_receipt > 0 && send_gap_us > 0.0 && receipt_gap_us < send_gap_us - 0.25 * period_us;
+        if (!after_burst) phase_shift_ns = std::llround(phase_lock_.Update(lead_us) * 1e3);
       } else {
         phase_shift_ns = std::llround(phase_lock_.Update(wait_us) * 1e3);
       }
