@@ -95,6 +95,35 @@ for run in "${RUNS[@]}"; do
   echo "$run,$config,$scene_tris,$tool_tris,$rc,$lb,$la,$ticks,$rate,$j50,$j99,$j999,$jmax,$misses,$mpm,$smiss,$c50,$c99,$c999,$cmax,$contact,$sent,$answered,$superseded,$lost,$r50,$r99,$rmax,$ratio,$scpu,$rcpu,$force,$mcomp" >> "$csv"
 done
 
+# Misses by cause against the platform's floor, the geometry thread and the
+# force difference it makes (issue 11): one row per run in loop_floor.csv.
+floor="$OUT/loop_floor.csv"
+echo "run,misses,misses_compute,misses_late_wakeup,late_wakeups,late_wakeups_per_min,cyclictest_cycles,cyclictest_late_1ms,cyclictest_late_per_min,cyclictest_max_us,wake_latency_p99_us,compute_p50_us,geometry_thread,pd_update_rate_hz,model_age_p50,model_age_p99,model_age_max,pose_triggered,rtt_p50_us,rtt_target_us,force_diff_rms_N,force_diff_max_N" > "$floor"
+for run in "${RUNS[@]}"; do
+  d="$WORK/$run"
+  s_out="$d/server.out"
+  sv() { local v; v=$(kv "$s_out" "$1"); echo "${v:--}"; }
+  ctc=- ctl=- ctm=- ctmax=- lpm=-
+  if [[ -s "$d/cyclictest.txt" ]]; then
+    read -r ctc ctl ctmax < <(awk '/^# Total:/ { c = $3 } /^# Max Latencies:/ { m = $4 + 0 } /^# Histogram Overflows:/ { o = $4 + 0 }
+      !/^#/ && NF >= 2 && $1 + 0 >= 1000 { l += $2 } END { printf "%d %d %d\n", c, l + o, m }' "$d/cyclictest.txt")
+    ctm=$(awk -v c="$ctc" -v l="$ctl" 'BEGIN { printf "%.1f", (c > 0 ? l / (c / 60000) : 0) }')
+  fi
+  el=$(sv elapsed_s); lw=$(sv late_wakeups)
+  [[ "$el" != - && "$lw" != - ]] && lpm=$(awk -v l="$lw" -v e="$el" 'BEGIN { printf "%.1f", (e > 0 ? l / (e / 60) : 0) }')
+  r50=- target=- frms=- fmax=-
+  [[ -s "$d/summary.json" ]] && r50=$(jq -r '.latency_us.p50' "$d/summary.json")
+  c50=$(sv compute_p50_us)
+  [[ -n "$echo_p50" && "$c50" != - ]] && target=$(awk -v e="$echo_p50" -v c="$c50" 'BEGIN { printf "%.0f", 1.3 * (e + c) }')
+  if [[ -s "$d/result.csv" && -s "$WORK/${run}_sync/result.csv" ]]; then
+    read -r frms fmax < <(awk -F, 'FNR == 1 { next } NR == FNR { if ($11 == 1) { f[$1] = $13 " " $14 " " $15 } next }
+      $11 == 1 && ($1 in f) { split(f[$1], a, " "); dx = $13 - a[1]; dy = $14 - a[2]; dz = $15 - a[3]; e = sqrt(dx*dx + dy*dy + dz*dz)
+        n++; s += e * e; if (e > m) m = e }
+      END { if (n) printf "%.3f %.3f\n", sqrt(s / n), m; else print "- -" }' "$WORK/${run}_sync/result.csv" "$d/result.csv")
+  fi
+  echo "$run,$(sv deadline_misses),$(sv misses_compute),$(sv misses_late_wakeup),$lw,$lpm,$ctc,$ctl,$ctm,$ctmax,$(sv wake_latency_p99_us),$c50,$(sv geometry_thread),$(sv pd_update_rate_hz),$(sv model_age_p50_ticks),$(sv model_age_p99_ticks),$(sv model_age_max_ticks),$(sv pose_triggered),$r50,$target,$frms,$fmax" >> "$floor"
+done
+
 # Plots.
 runs_list=$(awk -F, 'NR > 1 { printf "%s ", $1 }' "$csv")
 loop_runs=$(awk -F, 'NR > 1 && $8 != "-" { printf "%s ", $1 }' "$csv")
@@ -137,6 +166,15 @@ md="$OUT/loop_latency.md"
     printf "| %s | %s | %s | %s | %s | %s / %s / %s / %s | %s (%s) | %s | %s / %s / %s / %s | %s | %s | %s / %s |\n",
       $1, $3, $4, $8, $9, $10, $11, $12, $13, $14, $33, $15, $17, $18, $19, $20, contact, $30, $6, $7 }' "$csv"
   echo
+  echo "## Misses by cause, the platform's floor, the geometry thread"
+  echo
+  echo "From the server's summary line and \`cyclictest -m -p 79 -a 1 -i 1000\` run beside each run for the same time on the servo's CPU (the platform's floor). Misses split by cause: compute (the tick's own compute overran the period: ours, to be zero) and late wake-up (the tick started too late to finish: the platform's). Late wake-ups: wake-ups 1 ms or more after the tick's scheduled start (the pose's arrival in its window, or the deadline), per minute, against cyclictest's wake-ups 1 ms or more late per minute. Geometry: 1 = PD on the geometry thread (\`contact.geometry_thread\`), PD updates per second taken by the tick, and the age in ticks of the contact model it rendered. RTT target = 1.3 x (echo p50 + the server's compute p50). Force difference: |f| difference per pose against the same trajectory with \`--geometry-thread off\` (PD in the tick; the \`_sync\` rows), RMS and max over the poses both answered."
+  echo
+  echo "| Run | Misses: compute / late wake-up | Late wake-ups / min (server) | cyclictest late >= 1 ms / min (max us) | Wake latency p99 us | Geometry thread | PD updates / s | Model age p50 / p99 / max ticks | Pose-triggered | RTT p50 us (target) | Force diff vs sync RMS / max N |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  awk -F, 'NR > 1 { printf "| %s | %s / %s | %s | %s (%s) | %s | %s | %s | %s / %s / %s | %s | %s (%s) | %s / %s |\n",
+      $1, $3, $4, $6, $9, $10, $11, $13, $14, $15, $16, $17, $18, $19, $20, $21, $22 }' "$floor"
+  echo
   echo "## Round trip over LCM (replay side)"
   echo
   echo "Round trip = replay send to wrench receipt on the replay's clock. Superseded = a pose that arrived in the same servo period as a newer one (the fixed-rate loop renders the newest; the older is answered by that newer wrench); lost = never followed by an answer. RTT / echo = this run's p50 over the echo run's p50 (same sweep). Replay CPU in % of one core."
@@ -162,7 +200,7 @@ md="$OUT/loop_latency.md"
     echo "- The largest scene, \`$lname\` ($ltris triangles), ran with $lmpm misses per minute and a compute p99 of $lc99 us."
   fi
   awk -F, -v e="${echo_p50:-}" 'NR > 1 && $2 != "-" && $29 != "-" { n++; if (lo == "" || $29 < lo) lo = $29; if ($29 > hi) hi = $29 }
-    END { if (n && e != "") printf "- Round trip: the server is slower than the transport floor: p50 %s to %s times the echo'"'"'s %s us. The fixed-rate loop renders a pose at its next tick, so a pose waits 0 to 1000 us (about 500 us on average) before compute starts, and the wrench leaves only when the tick ends; the echo answers on receipt. Superseded poses are the other face of the same design (two poses in one period: the older is never rendered).\n", lo, hi, e }' "$csv"
+    END { if (n && e != "") printf "- Round trip: the server is slower than the transport floor: p50 %s to %s times the echo'"'"'s %s us. A pose waits for the tick that renders it: with pose-triggered ticks (the default) the tick starts on the pose'"'"'s arrival once the phase lock has put arrivals inside the tick'"'"'s window, otherwise it waits up to a period (the server'"'"'s pose_wait_p50_us in server.out); the echo answers on receipt. Superseded poses: two poses in one period, the older is never rendered (at most one tick per period).\n", lo, hi, e }' "$csv"
   awk -F, 'NR > 1 && $2 != "-" && $26 != "-" { n++; if (lo == "" || $26 + 0 < lo) lo = $26 + 0; if ($26 + 0 > hi) hi = $26 + 0; s += $24; p += $22 }
     END { if (n) printf "- The round-trip p50 of the server runs spans %s to %s us and does not follow scene size: the replay and the server each keep their own 1 kHz clock, so where a pose lands in the server'"'"'s period (its wait for the next tick) is set by a phase that is random per run and drifts slowly. The same phase, with jitter on both sides, puts two poses into one period now and then: %.1f%% of the poses were superseded over all server runs.\n", lo, hi, 100 * s / p }' "$csv"
   awk -F, 'NR > 1 && $2 != "-" && $14 != "-" { m += $14; mc += $33 }

@@ -2,9 +2,14 @@
 # Servo-loop benchmark: the real haptic_server and probe_replay as separate
 # processes over LCM UDP multicast, inside a private network namespace
 # (scripts/netns_run.sh), for every scene in the table below (a box pair up
-# to 164k scene triangles, the default scenes), plus the transport-only
-# echo_server as the floor. Writes bench/results/loop_latency.md, .csv and
-# PNG plots (bench/loop_report.sh).
+# to 164k scene triangles, mesh tools of 5.8k-6.4k triangles against 20k-164k
+# scene triangles, the default scenes), plus the transport-only echo_server
+# as the floor. Beside every run, for the same time, cyclictest measures the
+# platform's own late wake-ups (the floor the server's are compared with).
+# Every scene with a mesh tool runs a second time with --geometry-thread off
+# (PD in the tick) on the same trajectory, for the force difference the
+# geometry thread makes. Writes bench/results/loop_latency.md, .csv and PNG
+# plots (bench/loop_report.sh).
 #
 #   bench/run_loop_bench.sh [--minutes M] [--quick] [--only a,b,...]
 #
@@ -36,6 +41,9 @@ SCENES=(
   "armadillo_52k        bench/scenes/armadillo_52k.yaml        bench/scenes/armadillo_52k.params.yaml"
   "bunny_75k            bench/scenes/bunny_75k.yaml            bench/scenes/bunny_75k.params.yaml"
   "elephant_bunny_164k  bench/scenes/elephant_bunny_164k.yaml  bench/scenes/elephant_bunny_164k.params.yaml"
+  "cow_tool_camel_20k   bench/scenes/cow_tool_camel_20k.yaml   bench/scenes/cow_tool_camel_20k.params.yaml"
+  "knot_on_bunny        config/knot_on_bunny.yaml              probes/trajectories/knot_on_bunny.csv"
+  "knot_tool_elephant_bunny_164k bench/scenes/knot_tool_elephant_bunny_164k.yaml bench/scenes/knot_tool_elephant_bunny_164k.params.yaml"
   "box_on_box           config/box_on_box.yaml                 probes/trajectories/box_on_box.csv"
   "box_on_box_no_phase_lock bench/scenes/box_on_box_no_phase_lock.yaml probes/trajectories/box_on_box.csv"
   "spoon_in_cup         config/spoon_in_cup.yaml               probes/trajectories/spoon_in_cup.csv"
@@ -127,9 +135,17 @@ run_one() {
     echo "load_before=$(cut -d' ' -f1-3 /proc/loadavg)"
   } > "$dir/run.txt"
   local t0=$SECONDS rc=0
+  # The platform's floor over the same time: cyclictest at 1 kHz, SCHED_FIFO
+  # just below the server's servo thread, pinned to the servo's CPU.
+  local ct_pid=""
+  if command -v cyclictest >/dev/null; then
+    cyclictest -m -p 79 -a 1 -t 1 -i 1000 -D "$((SECONDS_PER_RUN + 4))" -q -h 20000 > "$dir/cyclictest.txt" 2>&1 &
+    ct_pid=$!
+  fi
   "$ROOT/scripts/netns_run.sh" "$ROOT/probes/scripts/run_session.sh" \
     --out-dir "$dir" --replay "$dir/replay_wrapped" --trajectory "$dir/trajectory.csv" \
     --replay-arg --max-superseded --replay-arg 0.5 -- "$server_exe" "$@" > "$dir/session.log" 2>&1 || rc=$?
+  [[ -n "$ct_pid" ]] && { wait "$ct_pid" || echo "run_loop_bench: $name: cyclictest failed (see $dir/cyclictest.txt)" >&2; }
   { echo "exit=$rc"; echo "load_after=$(cut -d' ' -f1-3 /proc/loadavg)"; } >> "$dir/run.txt"
   local line
   line=$(grep -h "haptic_server summary" "$dir/server.out" 2>/dev/null | tail -1 |
@@ -162,6 +178,13 @@ for row in "${runs[@]}"; do
   echo "run_loop_bench: [$((++i))/$(( ${#runs[@]} + 1 ))] $name ($config)" >&2
   run_one "$name" "$config" "$ROOT/$traj" "$BIN/haptic_server" --config "$ROOT/$config" \
     --timing-log "$WORK/$name/ticks.csv" --timing-log-ticks $(( (SECONDS_PER_RUN + 120) * 1000 ))
+  # Mesh tools: the same trajectory with PD in the tick, for the force difference.
+  if grep -q "file: .*knot1.off\|file: .*cow.off" <(sed -n '/^tool:/,/^objects:/p' "$ROOT/$config"); then
+    echo "run_loop_bench: [$i] ${name}_sync (--geometry-thread off)" >&2
+    run_one "${name}_sync" "$config" "$ROOT/$traj" "$BIN/haptic_server" --config "$ROOT/$config" \
+      --geometry-thread off \
+      --timing-log "$WORK/${name}_sync/ticks.csv" --timing-log-ticks $(( (SECONDS_PER_RUN + 120) * 1000 ))
+  fi
 done
 echo "end_utc=$(date -u '+%Y-%m-%d %H:%M:%S UTC')" >> "$WORK/meta.txt"
 

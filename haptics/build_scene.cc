@@ -78,7 +78,7 @@ std::shared_ptr<const pd::CollisionModel> BuildModel(pd::TriangleMesh mesh, cons
                                                      const std::string& config_file,
                                                      const std::string& cache_dir) {
   if (mesh.num_triangles() > kTriangleBudget)
-    spdlog::warn("{}: {}: {} triangles; more than {} may not hold the loop rate", config_file,
+    spdlog::warn("{}: {}: {} triangles; more than {} may not hold the loop rate with contact.geometry_thread off", config_file,
                  shape.key, mesh.num_triangles(), kTriangleBudget);
   pd::ModelCacheReport cache;
   auto model = pd::BuildCollisionModelCached(std::move(mesh), cache_dir, &cache);

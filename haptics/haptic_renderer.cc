@@ -11,11 +11,62 @@ HapticRenderer::HapticRenderer(const SceneConfig& config, const SceneModels& mod
       velocity_(config.coupling.velocity_filter_hz),
       envelope_(config.servo.soft_engage_s, config.servo.watchdog_timeout_s,
                 config.servo.watchdog_ramp_s),
-      penalty_(models, config.contact, pd_options),
+      geometry_(models.tool, models.X_TG, models.objects, config.contact, pd_options),
+      local_(geometry_.num_objects(), config.contact,
+             MakeLocalContactOptions(config.contact, config.device.max_force_rate,
+                                     config.device.max_torque_rate, dt_)),
+      worker_(&geometry_),
+      mode_(config.contact.geometry_thread),
+      sync_budget_us_(config.contact.sync_budget * dt_ * 1e6),
       tool_(config.tool.mass, config.tool.I_T, config.tool.gravity_W),
       coupling_(config.coupling, config.device.max_force, config.device.max_torque),
       limiter_(config.device, dt_),
-      contact_summary_(&no_contact_) {}
+      contact_summary_(&no_contact_) {
+  sync_answer_.Reserve(geometry_.num_objects());
+}
+
+bool HapticRenderer::wants_geometry_thread() const { return mode_ != GeometryThreadMode::kOff; }
+
+void HapticRenderer::set_geometry_worker_running(bool running) {
+  worker_running_ = running && wants_geometry_thread();
+  // auto starts on the worker when PolyDepth (milliseconds when cold) is in the scene.
+  async_ = worker_running_ &&
+           (mode_ == GeometryThreadMode::kOn || geometry_.any_polydepth());
+  local_.set_blend(async_);
+  fit_answers_ = 0;
+}
+
+const ContactSummary& HapticRenderer::ContactAt(const RigidState& tool, int32_t* flags) {
+  const int64_t tick = output_.tick;
+  const ContactSnapshot* answer = nullptr;
+  if (async_ && mode_ == GeometryThreadMode::kAuto && fit_answers_ >= static_cast<int64_t>(1.0 / dt_) &&
+      worker_.idle() && !geometry_.any_polydepth()) {
+    // auto: the worker's answers fit the budget again and it is idle (it
+    // touches the geometry only after a new Post): back in the tick.
+    async_ = false;
+    local_.set_blend(false);
+    ++switches_;
+  }
+  if (async_) {
+    worker_.Post(tool.X_W, tick);
+    answer = worker_.TakeAnswer();
+    if (answer != nullptr) fit_answers_ = answer->query_us <= sync_budget_us_ ? fit_answers_ + 1 : 0;
+    ++async_ticks_;
+  } else {
+    geometry_.Query(tool.X_W, tick, &sync_answer_);
+    answer = &sync_answer_;
+    if (worker_running_ && mode_ == GeometryThreadMode::kAuto && sync_answer_.query_us > sync_budget_us_) {
+      // Too slow for the tick: the next queries go to the worker.
+      async_ = true;
+      local_.set_blend(true);
+      fit_answers_ = 0;
+      ++switches_;
+    }
+  }
+  const ContactSummary& summary = local_.Update(answer, tool, tick, flags);
+  model_age_ = local_.model_age(tick);
+  return summary;
+}
 
 const WrenchOutput& HapticRenderer::Tick(double t, const PoseSample* pose) {
   const auto t_start = std::chrono::steady_clock::now();
@@ -63,18 +114,17 @@ const WrenchOutput& HapticRenderer::Tick(double t, const PoseSample* pose) {
   }
   if (!was_engaged) {
     tool_.Reset(device_.X_W);
-    penalty_.ResetWarmStarts();
+    // Nothing was posted before the first pose: the worker is idle.
+    if (!async_ || worker_.idle()) geometry_.ResetWarmStarts();
+    local_.Reset();
   }
   // Stale beyond the watchdog: the handle's motion is unknown.
   if (envelope_.watchdog_active()) velocity_.Stop();
   device_.v_W = velocity_.v_W();
   device_.w_W = velocity_.w_W();
 
-  contact_summary_ = &penalty_.Compute(tool_.state());
-  if (contact_summary_->num_invalid > 0) {
-    flags |= kFlagPdInvalid;
-    ++pd_invalid_ticks_;
-  }
+  contact_summary_ = &ContactAt(tool_.state(), &flags);
+  if (contact_summary_->num_invalid > 0) ++pd_invalid_ticks_;
   LinearizedWrench on_tool = coupling_.Linearize(device_, tool_.state());
   on_tool += contact_summary_->wrench;
   tool_.Step(dt_, on_tool);
@@ -94,8 +144,14 @@ RendererCounts HapticRenderer::counts() const {
   c.poses_accepted = validator_.accepted();
   c.poses_rejected = validator_.rejections();
   c.stale_ticks = stale_ticks_;
-  c.pd_invalid = penalty_.invalid_count();
+  const LocalContactCounts& local = local_.counts();
+  c.pd_invalid = local.invalid_answers;
   c.pd_invalid_ticks = pd_invalid_ticks_;
+  c.pd_held_ticks = local.held_ticks;
+  c.model_updates = local.updates;
+  c.model_stale_ticks = local.stale_ticks;
+  c.geometry_async_ticks = async_ticks_;
+  c.geometry_switches = switches_;
   c.tool_nonfinite = tool_.nonfinite_steps();
   c.limiter = limiter_.counts();
   c.watchdog_trips = envelope_.watchdog_trips();

@@ -35,6 +35,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -63,6 +64,7 @@ struct Options {
   double duration_s = 0.0;  // 0: until a signal
   bool check = false;
   std::string log_level = "info";
+  std::string geometry_thread;        // overrides contact.geometry_thread (auto|on|off)
   std::string timing_log;             // empty: no per-tick log
   int64_t timing_log_ticks = 600000;  // records preallocated (10 min at 1 kHz)
   std::string accept_session;         // overrides lcm.accept_session
@@ -77,7 +79,7 @@ std::string DeviceToken(std::string_view name) {
 }
 
 std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCounts& rx) {
-  char line[1280];
+  char line[2048];
   std::snprintf(line, sizeof(line),
                 "haptic_server summary: ticks=%lld elapsed_s=%.3f rate_hz=%.1f deadline_misses=%lld "
                 "jitter_p99_us=%.1f compute_p99_us=%.1f compute_max_us=%.1f poses_received=%lld "
@@ -87,7 +89,13 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 "nonfinite_outputs=%lld realtime=%d pose_wait_p50_us=%.1f pose_wait_p99_us=%.1f "
                 "source_session=%s source_device=%s source_locks=%lld source_changes=%lld "
                 "poses_rejected_other_sender=%lld poses_rejected_not_pinned=%lld "
-                "poses_rejected_no_identity=%lld poses_rejected_version=%lld senders_seen=%lld",
+                "poses_rejected_no_identity=%lld poses_rejected_version=%lld senders_seen=%lld "
+                "compute_p50_us=%.1f misses_compute=%lld misses_late_wakeup=%lld late_wakeups=%lld "
+                "wake_latency_p50_us=%.1f wake_latency_p99_us=%.1f wake_latency_max_us=%.1f "
+                "geometry_thread=%d pd_update_rate_hz=%.1f model_age_p50_ticks=%.0f "
+                "model_age_p99_ticks=%.0f model_age_max_ticks=%.0f pd_held_ticks=%lld "
+                "model_stale_ticks=%lld geometry_async_ticks=%lld pose_triggered=%d ticks_by_pose=%lld "
+                "ticks_by_deadline=%lld",
                 static_cast<long long>(s.ticks), s.elapsed_s, s.achieved_rate_hz,
                 static_cast<long long>(s.deadline_misses), s.jitter_p99_us, s.compute_p99_us,
                 s.compute_max_us, static_cast<long long>(rx.received),
@@ -109,13 +117,25 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 static_cast<long long>(rx.source_rejected.not_pinned),
                 static_cast<long long>(rx.source_rejected.no_identity),
                 static_cast<long long>(rx.wrong_version),
-                static_cast<long long>(rx.source.senders_seen));
+                static_cast<long long>(rx.source.senders_seen), s.compute_p50_us,
+                static_cast<long long>(s.misses_compute), static_cast<long long>(s.misses_late_wakeup),
+                static_cast<long long>(s.late_wakeups), s.wake_latency_p50_us, s.wake_latency_p99_us,
+                s.wake_latency_max_us, s.geometry_thread ? 1 : 0, s.pd_update_rate_hz,
+                s.model_age_p50_ticks, s.model_age_p99_ticks, s.model_age_max_ticks,
+                static_cast<long long>(s.renderer.pd_held_ticks),
+                static_cast<long long>(s.renderer.model_stale_ticks),
+                static_cast<long long>(s.renderer.geometry_async_ticks), s.pose_triggered ? 1 : 0,
+                static_cast<long long>(s.ticks_by_pose), static_cast<long long>(s.ticks_by_deadline));
   return line;
 }
 
 int Serve(const Options& opt, sigset_t* signals) {
   haptics::SceneConfig config = haptics::LoadSceneConfig(opt.config);
   if (!opt.lcm_url.empty()) config.lcm.url = opt.lcm_url;
+  if (!opt.geometry_thread.empty())
+    config.contact.geometry_thread = opt.geometry_thread == "on"    ? haptics::GeometryThreadMode::kOn
+                                     : opt.geometry_thread == "off" ? haptics::GeometryThreadMode::kOff
+                                                                    : haptics::GeometryThreadMode::kAuto;
   const haptics::SceneModels models = haptics::BuildSceneModels(config, opt.cache_dir);
   spdlog::info("scene '{}': tool {}, {} objects, device {} ({} N, {} N·m), {} Hz",
                config.name, models.tool->Describe(), models.objects.size(),
@@ -190,6 +210,14 @@ int Serve(const Options& opt, sigset_t* signals) {
   loop_options.status_rate_hz = config.servo.status_rate_hz;
   loop_options.phase_lock.enabled = config.servo.phase_lock;
   loop_options.phase_lock.target_us = config.servo.phase_lock_target_us;
+  loop_options.geometry.cpu = config.contact.geometry_cpu;
+  // Pose-triggered ticks: the receiver wakes the loop when a pose arrives.
+  haptics::ArrivalSignal arrivals;
+  loop_options.trigger =
+      config.servo.pose_triggered ? haptics::TickTrigger::kPose : haptics::TickTrigger::kFixedRate;
+  loop_options.arrivals = &arrivals;
+  loop_options.pose_window_us = config.servo.pose_window_us;
+  receiver.set_arrival_signal(&arrivals);
   std::unique_ptr<haptics::TickLog> tick_log;
   if (!opt.timing_log.empty()) {
     // Fail now, not after the run, if the file cannot be written.
@@ -260,6 +288,14 @@ int Serve(const Options& opt, sigset_t* signals) {
     spdlog::info("timing log {}: {} ticks ({} not logged: --timing-log-ticks {})", opt.timing_log,
                  tick_log->size(), tick_log->not_logged(), opt.timing_log_ticks);
   }
+  // A PolyDepth query on the geometry thread can take seconds on large
+  // meshes; everything is written, so do not wait for it to end.
+  if (!loop.WaitGeometryFinished(2.0)) {
+    spdlog::warn("geometry thread still in a query 2 s after the stop; exiting without it");
+    spdlog::default_logger()->flush();
+    std::fflush(nullptr);
+    std::_Exit(kExitOk);
+  }
   return kExitOk;
 }
 
@@ -277,6 +313,9 @@ int main(int argc, char** argv) {
                  "directory of the mesh precomputation cache, overrides cache_dir of the config");
   app.add_option("--duration", opt.duration_s, "stop after this many seconds (default: run until SIGINT/SIGTERM)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--geometry-thread", opt.geometry_thread,
+                 "where PD queries run, overrides contact.geometry_thread of the config")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   app.add_flag("--check", opt.check, "load and validate the config, build the scene, then exit");
   app.add_option("--log-level", opt.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));

@@ -38,6 +38,17 @@ class LatestValue {
     return Publish();
   }
 
+  // Before either side uses it: applies f to each of the three slots (e.g.
+  // to size their buffers once, so that later copies never allocate).
+  template <typename F>
+  void ForEachSlot(F&& f) {
+    for (Slot& slot : slots_) f(slot.value);
+  }
+
+  // Reader: whether a value was published since the last TakeNewest (a
+  // peek; only the reader clears it).
+  bool HasNew() const { return (middle_.load(std::memory_order_acquire) & kFresh) != 0; }
+
   // Reader: the newest value if one was published since the previous call,
   // else nullptr. The pointee stays valid and unchanged until the next call.
   const T* TakeNewest() {

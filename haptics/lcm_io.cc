@@ -18,7 +18,9 @@ static_assert(kFlagForceSaturated == int32_t{wrench_t::FLAG_FORCE_SATURATED} &&
                   kFlagWatchdog == int32_t{wrench_t::FLAG_WATCHDOG} &&
                   kFlagStaleInput == int32_t{wrench_t::FLAG_STALE_INPUT} &&
                   kFlagSoftEngage == int32_t{wrench_t::FLAG_SOFT_ENGAGE} &&
-                  kFlagPdInvalid == int32_t{wrench_t::FLAG_PD_INVALID},
+                  kFlagPdInvalid == int32_t{wrench_t::FLAG_PD_INVALID} &&
+                  kFlagContactHeld == int32_t{wrench_t::FLAG_CONTACT_HELD} &&
+                  kFlagModelStale == int32_t{wrench_t::FLAG_MODEL_STALE},
               "wrench_output.h flags must match wrench_t.lcm");
 
 namespace {
@@ -186,6 +188,7 @@ void PoseReceiver::OnMessage(const void* data, int size, int64_t receive_ns) {
   }
   if (out_->Publish()) dropped_.fetch_add(1, std::memory_order_relaxed);
   received_.fetch_add(1, std::memory_order_relaxed);
+  if (arrivals_ != nullptr) arrivals_->Notify();  // pose-triggered tick
 }
 
 void PoseReceiver::Reject(SourceDecision why, int64_t session) {
@@ -289,6 +292,18 @@ haptics_msgs::server_status_t MakeStatusMessage(const LoopStatus& loop, const Re
   m.force_saturations = loop.renderer.limiter.saturated;
   m.watchdog_trips = loop.renderer.watchdog_trips;
   m.realtime = loop.realtime ? 1 : 0;
+  m.misses_compute = loop.misses_compute;
+  m.misses_late_wakeup = loop.misses_late_wakeup;
+  m.late_wakeups = loop.late_wakeups;
+  m.wake_latency_p99_us = loop.wake_latency_us.p99;
+  m.pd_update_rate_hz = loop.pd_update_rate_hz;
+  m.model_age_p50_ticks = loop.model_age_ticks.p50;
+  m.model_age_p99_ticks = loop.model_age_ticks.p99;
+  m.model_age_max_ticks = loop.model_age_ticks.max;
+  m.pd_invalid = loop.renderer.pd_invalid;
+  m.pd_held_ticks = loop.renderer.pd_held_ticks;
+  m.model_stale_ticks = loop.renderer.model_stale_ticks;
+  m.geometry_async = loop.geometry_async ? 1 : 0;
   return m;
 }
 

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "haptics/arrival_signal.h"
 #include "haptics/latest_value.h"
 #include "haptics/scene_config.h"
 #include "haptics/pose_sample.h"
@@ -102,6 +103,8 @@ class PoseReceiver {
   // Any thread (the source snapshot is read through a triple buffer whose
   // one reader is the caller: call it from one thread only).
   ReceiverCounts counts() const;
+  // Notified after every pose handed over (before StartThread; not owned).
+  void set_arrival_signal(ArrivalSignal* arrivals) { arrivals_ = arrivals; }
 
  private:
   static void Handle(const lcm::ReceiveBuffer* rbuf, const std::string& channel, PoseReceiver* self);
@@ -109,6 +112,7 @@ class PoseReceiver {
   lcm::LCM* lcm_;
   std::string channel_;
   LatestValue<PoseSample>* out_;
+  ArrivalSignal* arrivals_ = nullptr;
   lcm::Subscription* subscription_ = nullptr;
   std::thread thread_;
   std::atomic<bool> stop_{false};

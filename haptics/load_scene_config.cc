@@ -131,6 +131,17 @@ ContactConfig ReadContact(const YamlMap& m) {
                          ? TorqueModel::kRegionPoints
                          : TorqueModel::kPressureCentre;
   }
+  if (m.Has("geometry_thread")) {
+    const std::string mode = m.Choice("geometry_thread", {"auto", "on", "off"});
+    c.geometry_thread = mode == "on"    ? GeometryThreadMode::kOn
+                        : mode == "off" ? GeometryThreadMode::kOff
+                                        : GeometryThreadMode::kAuto;
+  }
+  c.sync_budget = m.NumberOr("sync_budget", 0.25, Range::Positive(1.0, "of the servo period"));
+  c.geometry_cpu = m.IntegerOr("geometry_cpu", -1, -1, 1023);
+  c.invalid_hold_s = 1e-3 * m.NumberOr("invalid_hold_ms", 200.0, Range::Closed(1.0, 5000.0, "ms"));
+  c.model_max_age_s = 1e-3 * m.NumberOr("model_max_age_ms", 250.0, Range::Closed(1.0, 5000.0, "ms"));
+  c.model_age_ramp_s = 1e-3 * m.NumberOr("model_age_ramp_ms", 250.0, Range::Closed(1.0, 5000.0, "ms"));
   m.WarnUnknownKeys();
   return c;
 }
@@ -168,6 +179,9 @@ ServoConfig ReadServo(const YamlMap& m) {
   // Below half a period, so a pose arriving on time never waits a whole one.
   s.phase_lock_target_us = m.NumberOr("phase_lock_target_us", 150.0,
                                       Range::Closed(0.0, 0.5e6 / s.rate_hz, "us"));
+  if (m.Has("tick_trigger"))
+    s.pose_triggered = m.Choice("tick_trigger", {"pose", "fixed_rate"}) == "pose";
+  s.pose_window_us = m.NumberOr("pose_window_us", 400.0, Range::Closed(0.0, 0.5e6 / s.rate_hz, "us"));
   m.WarnUnknownKeys();
   return s;
 }

@@ -48,15 +48,26 @@
 // only); translation-rotation cross terms are dropped, which keeps K and D
 // symmetric positive semi-definite (all the step needs).
 //
-// An answer PolyDepth could not verify (result.valid == false) is not used:
-// that object contributes nothing this tick and is counted. The wrench is the
-// sum over all objects in contact.
+// The geometry (broad phase, PD, pressure points) is ContactGeometry's
+// (contact_geometry.h); each answer becomes a local model per pair
+// (pair_contact_model.h) that LocalContactModel (local_contact_model.h)
+// evaluates at the tool's state. PenaltyContact is the synchronous pair of the
+// two: query and evaluate at the same state, every call; the models are then
+// exact (the formulas above).
+//
+// An answer PolyDepth could not verify (result.valid == false) does not drop
+// the object's force: the pair's last valid model is held, evaluated at the
+// current pose, decaying to zero over contact.invalid_hold_ms (counted, and
+// flagged by the renderer). A pair with no valid answer yet contributes
+// nothing. The wrench is the sum over all objects in contact.
 #include <cstdint>
 #include <memory>
 #include <vector>
 
-#include "haptics/broad_phase.h"
 #include "haptics/build_scene.h"
+#include "haptics/contact_geometry.h"
+#include "haptics/local_contact_model.h"
+#include "haptics/pair_contact_model.h"
 #include "haptics/scene_config.h"
 #include "haptics/scene_object.h"
 #include "haptics/spatial.h"
@@ -65,19 +76,15 @@
 
 namespace haptics {
 
-struct ContactSummary {
-  LinearizedWrench wrench;  // on the tool, at its origin, in W, with its K and D
-  double max_depth = 0.0;   // deepest PD over objects (m)
-  int num_regions = 0;      // contact regions summed over objects
-  int num_candidates = 0;   // objects the broad phase kept (PD queried)
-  int num_culled = 0;       // objects the broad phase skipped this tick
-  int num_in_contact = 0;   // objects with a verified contact this tick
-  int num_invalid = 0;      // objects whose PD was not verified this tick
-};
+// Local-model options for a servo period dt (s) from the contact config and
+// the device's rate limits.
+LocalContactOptions MakeLocalContactOptions(const ContactConfig& contact, double max_force_rate,
+                                            double max_torque_rate, double dt);
 
 class PenaltyContact {
  public:
   // The tool geometry in its frame G, placed in the tool frame T by X_TG.
+  // `local`: hold and ageing (default: hold over contact.invalid_hold_ms at 1 kHz).
   PenaltyContact(std::shared_ptr<const pd::Geometry> tool, const Isometry3& X_TG,
                  std::vector<SceneObject> objects, const ContactConfig& params,
                  pd::PolyDepthOptions options = {});
@@ -88,51 +95,32 @@ class PenaltyContact {
   // Contact at the tool's pose and velocity. The tool's previous pose (from
   // the previous call) and this one bound its motion for the broad phase.
   // The reference stays valid until the next call. Allocation-free once the
-  // solvers' scratch has grown.
+  // solvers' scratch has grown. Each call is one tick of the hold decay.
   const ContactSummary& Compute(const RigidState& tool);
 
-  // Forget warm starts and the previous pose (after the tool jumped).
+  // Forget warm starts, held models and the previous pose (after the tool jumped).
   void ResetWarmStarts();
 
-  int num_objects() const { return static_cast<int>(objects_.size()); }
-  const SceneObject& object(int i) const { return objects_[i]; }
-  const pd::PairPdSolver& solver(int i) const { return *solvers_[i]; }
-  const BroadPhase& broad_phase() const { return broad_phase_; }
+  int num_objects() const { return geometry_.num_objects(); }
+  const SceneObject& object(int i) const { return geometry_.object(i); }
+  const pd::PairPdSolver& solver(int i) const { return geometry_.solver(i); }
+  const BroadPhase& broad_phase() const { return geometry_.broad_phase(); }
   // The last PD answer for object i (in_collision false if it was culled).
-  const pd::PenetrationResult& last_result(int i) const { return results_[i]; }
-  int64_t invalid_count() const { return invalid_count_; }
-  int64_t query_count() const { return query_count_; }
-  const ContactConfig& params() const { return params_; }
+  const pd::PenetrationResult& last_result(int i) const { return geometry_.last_result(i); }
+  int64_t invalid_count() const { return geometry_.invalid_count(); }
+  int64_t query_count() const { return geometry_.query_count(); }
+  const ContactConfig& params() const { return geometry_.params(); }
+  ContactGeometry& geometry() { return geometry_; }
+  LocalContactModel& local() { return local_; }
+  const LocalContactModel& local() const { return local_; }
+  int32_t last_flags() const { return flags_; }
 
  private:
-  void AddObjectContact(const pd::PenetrationResult& r, const SceneObject& object,
-                        const RigidState& tool);
-  // Tool pressure points inside `object` and below some region's plane, into inside_.
-  void FindPressurePoints(const pd::PenetrationResult& r, const SceneObject& object);
-
-  std::shared_ptr<const pd::Geometry> tool_;
-  Isometry3 X_TG_;
-  std::vector<SceneObject> objects_;
-  ContactConfig params_;
-  BroadPhase broad_phase_;
-  std::vector<std::unique_ptr<pd::PairPdSolver>> solvers_;
-  std::vector<pd::PenetrationResult> results_;
-  ContactSummary summary_;
-  // Broad-phase state.
-  bool have_previous_ = false;
-  WorldBox previous_box_W_;            // tool box at the previous call
-  std::vector<int> candidates_now_;    // this tick's candidates
-  std::vector<int> candidates_prev_;   // the previous tick's
-  std::vector<int64_t> candidate_tick_;  // per object: last tick it was a candidate
+  ContactGeometry geometry_;
+  LocalContactModel local_;
+  ContactSnapshot snapshot_;
   int64_t tick_ = 0;
-  // Scratch, sized at construction.
-  Isometry3 X_WG_ = Isometry3::Identity();          // tool geometry pose this tick
-  std::vector<Vector3> p_WV_;                       // tool pressure points in W (those below a plane)
-  std::vector<std::pair<double, int>> depth_points_;  // (depth below a plane, point)
-  std::vector<int> inside_;                         // points inside the object
-  double same_point_tol2_ = 0.0;  // (m²) a region point this close to a pressure point is it
-  int64_t invalid_count_ = 0;
-  int64_t query_count_ = 0;
+  int32_t flags_ = 0;
 };
 
 }  // namespace haptics

@@ -20,7 +20,9 @@ PhaseLock::PhaseLock(const PhaseLockOptions& options, double period_us)
 }
 
 double PhaseLock::Update(double wait_us) {
-  if (!options_.enabled || !std::isfinite(wait_us) || wait_us < 0.0) return 0.0;
+  // Negative: the pose came after the deadline (pose-triggered ticks measure
+  // the pose's lead on the deadline, which may be either side of it).
+  if (!options_.enabled || !std::isfinite(wait_us)) return 0.0;
   ++updates_;
   last_wait_us_ = wait_us;
   const double want = -options_.gain * (wait_us - options_.target_us);

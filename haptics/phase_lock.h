@@ -29,8 +29,10 @@ class PhaseLock {
  public:
   PhaseLock(const PhaseLockOptions& options, double period_us);
 
-  // `wait_us`: receipt-to-wake time of the pose this tick took. Returns the
-  // shift (us) to add to the next deadline; negative: tick earlier.
+  // `wait_us`: receipt-to-wake time of the pose this tick took (fixed-rate
+  // ticks), or the pose's lead on the deadline (pose-triggered ticks, may be
+  // negative). Returns the shift (us) to add to the next deadline; negative:
+  // tick earlier.
   double Update(double wait_us);
 
   const PhaseLockOptions& options() const { return options_; }

@@ -21,6 +21,17 @@ bool TrySetFifoScheduling(int priority, std::string* why) {
   return true;
 }
 
+bool TrySetNormalScheduling(std::string* why) {
+  sched_param param{};
+  param.sched_priority = 0;
+  const int err = pthread_setschedparam(pthread_self(), SCHED_OTHER, &param);
+  if (err != 0) {
+    *why = std::string("pthread_setschedparam(SCHED_OTHER): ") + std::strerror(err);
+    return false;
+  }
+  return true;
+}
+
 bool TryPinToCpu(int cpu, std::string* why) {
   if (cpu < 0 || cpu >= CPU_SETSIZE) {
     *why = "cpu " + std::to_string(cpu) + " out of range";

@@ -7,6 +7,8 @@ namespace haptics {
 
 // SCHED_FIFO at `priority` (1..99).
 bool TrySetFifoScheduling(int priority, std::string* why);
+// SCHED_OTHER (undoes a real-time policy inherited from the creating thread).
+bool TrySetNormalScheduling(std::string* why);
 // Pins the calling thread to one CPU.
 bool TryPinToCpu(int cpu, std::string* why);
 // Locks current and future pages in RAM (no page faults in the loop).

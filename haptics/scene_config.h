@@ -74,12 +74,25 @@ enum class TorqueModel {
   kRegionPoints,    // each region's point with the full k (the plain formula)
 };
 
+// Where the PD queries run (geometry_thread.h, haptic_renderer.h).
+enum class GeometryThreadMode {
+  kAuto,  // default: in the tick while queries fit sync_budget of the period, else on the thread
+  kOn,    // always on the geometry thread; the tick renders the local contact model
+  kOff,   // always in the tick (the tick waits for PolyDepth)
+};
+
 struct ContactConfig {
   double stiffness = 0.0;     // N/m, penalty per metre of penetration depth
   double damping = 0.0;       // N·s/m, along the contact normal
   double torque_scale = 1.0;  // multiplies the torque of the local PDs
   double cull_margin = 0.005;  // m, added to the broad phase's swept tool box (broad_phase.h)
   TorqueModel torque_model = TorqueModel::kPressureCentre;
+  GeometryThreadMode geometry_thread = GeometryThreadMode::kAuto;
+  double sync_budget = 0.25;        // auto: fraction of the servo period queries may take in the tick
+  int geometry_cpu = -1;            // pin the geometry thread (-1: the other CPU than servo.cpu, if any)
+  double invalid_hold_s = 0.2;      // hold-last-valid: decay of a held contact (configured in ms)
+  double model_max_age_s = 0.25;    // an older contact model ramps out (configured in ms)
+  double model_age_ramp_s = 0.25;   // ... to zero over this time (configured in ms)
 };
 
 struct CouplingConfig {
@@ -117,6 +130,11 @@ struct ServoConfig {
   // waits about phase_lock_target_us (us) for the tick instead of 0..1 period.
   bool phase_lock = true;
   double phase_lock_target_us = 150.0;
+  // What starts a tick (servo_loop.h, TickTrigger): the pose's arrival
+  // (default; within pose_window_us before the deadline) or the fixed-rate
+  // deadline only.
+  bool pose_triggered = true;
+  double pose_window_us = 400.0;
 };
 
 struct LcmConfig {

@@ -65,6 +65,17 @@ double DurationHistogram::Percentile(double p) const {
   return max_;
 }
 
+double DurationHistogram::PercentileFloor(double p) const {
+  if (count_ == 0) return 0.0;
+  const int64_t rank = static_cast<int64_t>(Rank(p, static_cast<size_t>(count_))) + 1;
+  int64_t seen = 0;
+  for (size_t b = 0; b < bins_.size(); ++b) {
+    seen += bins_[b];
+    if (seen >= rank) return b + 1 == bins_.size() ? max_ : static_cast<double>(b);
+  }
+  return max_;
+}
+
 TickLog::TickLog(size_t capacity) : records_(capacity) {}
 
 void TickLog::Add(const TickRecord& r) {

@@ -41,6 +41,9 @@ class DurationHistogram {
   double max() const { return max_; }
   // Nearest-rank percentile, p in (0, 1]; the upper edge of its bin.
   double Percentile(double p) const;
+  // The same percentile as the lower edge of its bin: exact for integer
+  // samples (e.g. ages in ticks).
+  double PercentileFloor(double p) const;
 
  private:
   std::vector<int64_t> bins_;

@@ -15,7 +15,9 @@ inline constexpr int32_t kFlagRateLimited = 4;      // force or torque change cl
 inline constexpr int32_t kFlagWatchdog = 8;         // no pose within the watchdog time: ramping to zero
 inline constexpr int32_t kFlagStaleInput = 16;      // no new valid pose since the previous tick
 inline constexpr int32_t kFlagSoftEngage = 32;      // start-up (or recovery) ramp in progress
-inline constexpr int32_t kFlagPdInvalid = 64;       // a PD answer could not be verified this tick
+inline constexpr int32_t kFlagPdInvalid = 64;       // a pair's newest PD answer could not be verified
+inline constexpr int32_t kFlagContactHeld = 128;    // ... and its last valid contact is held (decaying)
+inline constexpr int32_t kFlagModelStale = 256;     // contact model older than contact.model_max_age_ms: ramping out
 
 struct WrenchOutput {
   int64_t tick = 0;         // server tick number

@@ -6,7 +6,9 @@
 # answered, round-trip latency p50/p99/max, max force, the server's status
 # (deadline misses, ...) and the server's own summary line.
 #
-#   scripts/demo.sh [SCENE]                 SCENE: box_on_box (default), spoon_in_cup, peg_in_hole
+#   scripts/demo.sh [SCENE]                 SCENE: knot_on_bunny (default: a 6.4k-triangle knot tool
+#                                           slid over a 75k-triangle bunny, PolyDepth), box_on_box,
+#                                           spoon_in_cup, peg_in_hole
 #   scripts/demo.sh CONFIG.yaml [TRAJECTORY]
 #
 # Needs a build (scripts/build.sh; BUILD_DIR overrides build/). Results are
@@ -23,7 +25,7 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 BIN="${BUILD_DIR:-$ROOT/build}/bin"
 
-arg="${1:-box_on_box}"
+arg="${1:-knot_on_bunny}"
 if [[ "$arg" == *.yaml || "$arg" == */* ]]; then
   config="$arg"
   scene="$(basename "$arg" .yaml)"

@@ -10,7 +10,7 @@ PKGS=(
   gnuplot-nox
   libcgal-demo assimp-testmodels
   iproute2 util-linux jq
-  rt-tests  # cyclictest: scripts/soak.sh measures the machine's late wake-up floor
+  rt-tests  # cyclictest: the platform's late wake-up floor beside the loop benchmark and the soak
   clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer
   libjs-three chromium libpng-dev  # session viewer page (three.js), its browser test, png_stats
 )

@@ -261,7 +261,7 @@ TEST(HapticRenderer, TicksDoNotAllocateAfterWarmUp) {
   const int64_t before = test::ThreadAllocations();
   run();
   EXPECT_EQ(test::ThreadAllocations() - before, 0);
-  EXPECT_GT(rig.renderer->penalty().query_count(), 100);
+  EXPECT_GT(rig.renderer->geometry().query_count(), 100);
 }
 
 }  // namespace

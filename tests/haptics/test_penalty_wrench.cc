@@ -6,6 +6,7 @@
 
 #include <functional>
 
+#include "haptics/wrench_output.h"
 #include "haptics_test_util.h"
 
 namespace haptics {
@@ -185,6 +186,54 @@ TEST(PenaltyContact, UnverifiedPdIsDroppedAndCounted) {
   EXPECT_EQ(c.wrench.w0.f_W, Vector3::Zero());
   EXPECT_EQ(c.wrench.w0.tau_W, Vector3::Zero());
   EXPECT_EQ(f.contact->invalid_count(), 1);
+}
+
+// Issue 12, item 3: an answer that is not valid used to drop the object's
+// force for the tick: the wall let go exactly when the solver struggled. The
+// pair's last valid contact is held instead, at the current pose, fading
+// over contact.invalid_hold_ms, and counted. A solver whose only start is the
+// centroid difference, without warm start, verifies the tool 2 mm in the
+// table and cannot answer at all with the tool's centroid on the table's.
+TEST(PenaltyContact, UnverifiedPdHoldsTheLastValidContactOfThePair) {
+  pd::PolyDepthOptions centroid_only;
+  centroid_only.num_maximally_clear = 0;
+  centroid_only.use_centroid = true;
+  centroid_only.num_random = 0;
+  centroid_only.num_sampling_directions = 0;
+  centroid_only.warm_start = false;
+  Fixture f(centroid_only, [](SceneConfig& c) {
+    c.tool.shape.shape = ThinPlateShape{0.01, 0.01, 0.01};
+    c.objects[0].shape.shape = ThinPlateShape{0.05, 0.05, 0.01};
+    c.contact.invalid_hold_s = 0.1;  // 100 calls at 1 kHz
+  });
+  ASSERT_EQ(f.contact->solver(0).method(), pd::PdMethod::kPolyDepth);
+  const ContactSummary& valid = f.contact->Compute(ToolAt(Vector3(0, 0, 0.008)));
+  ASSERT_TRUE(f.contact->last_result(0).valid);
+  EXPECT_NEAR(valid.wrench.w0.f_W.z(), kK * 0.002, 1e-4);
+
+  // Centroid on the table's (0, 0, -0.01): 18 mm deeper than the valid answer.
+  const ContactSummary& held = f.contact->Compute(ToolAt(Vector3(0, 0, -0.01)));
+  ASSERT_TRUE(f.contact->last_result(0).in_collision);
+  ASSERT_FALSE(f.contact->last_result(0).valid);
+  EXPECT_EQ(held.num_invalid, 1);
+  EXPECT_EQ(held.num_held, 1);
+  EXPECT_EQ(held.num_in_contact, 1);
+  // The held plane, evaluated where the tool is now: 20 mm deep.
+  EXPECT_NEAR(held.wrench.w0.f_W.z(), kK * 0.020, 1e-4);
+  EXPECT_NEAR(held.wrench.K(2, 2), kK, 1e-4);
+  EXPECT_TRUE(f.contact->last_flags() & kFlagPdInvalid);
+  EXPECT_TRUE(f.contact->last_flags() & kFlagContactHeld);
+  EXPECT_EQ(f.contact->invalid_count(), 1);
+  // Still unverified: the held contact fades over 100 calls.
+  for (int i = 0; i < 49; ++i) f.contact->Compute(ToolAt(Vector3(0, 0, -0.01)));
+  EXPECT_NEAR(f.contact->Compute(ToolAt(Vector3(0, 0, -0.01))).wrench.w0.f_W.z(), kK * 0.020 * 0.5, 1e-4);
+  EXPECT_EQ(f.contact->local().counts().held_ticks, 51);
+  for (int i = 0; i < 50; ++i) f.contact->Compute(ToolAt(Vector3(0, 0, -0.01)));
+  EXPECT_EQ(f.contact->Compute(ToolAt(Vector3(0, 0, -0.01))).wrench.w0.f_W.norm(), 0.0);
+  // A verified answer again: the fresh contact, no flag.
+  const ContactSummary& back = f.contact->Compute(ToolAt(Vector3(0, 0, 0.005)));
+  EXPECT_NEAR(back.wrench.w0.f_W.z(), kK * 0.005, 1e-4);
+  EXPECT_EQ(f.contact->last_flags() & (kFlagPdInvalid | kFlagContactHeld), 0);
 }
 
 }  // namespace

@@ -80,11 +80,14 @@ TEST(PhaseLock, RejectsBadOptionsNamingThem) {
   EXPECT_THROW(PhaseLock(options, kPeriodUs), std::invalid_argument);
 }
 
-TEST(PhaseLock, IgnoresNonFiniteOrNegativeWaits) {
+TEST(PhaseLock, IgnoresNonFiniteWaitsAndMovesLaterForANegativeLead) {
   PhaseLock lock({}, kPeriodUs);
   EXPECT_EQ(lock.Update(std::nan("")), 0.0);
-  EXPECT_EQ(lock.Update(-5.0), 0.0);
   EXPECT_EQ(lock.updates(), 0);
+  // Pose-triggered ticks feed the pose's lead on the deadline: a pose after
+  // the deadline (negative lead) moves the deadline later, by at most a step.
+  EXPECT_EQ(lock.Update(-5.0), lock.options().max_step_us);
+  EXPECT_EQ(lock.updates(), 1);
 }
 
 }  // namespace

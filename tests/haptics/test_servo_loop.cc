@@ -9,6 +9,8 @@
 #include <chrono>
 #include <thread>
 
+#include <time.h>
+
 #include "haptics_test_util.h"
 
 namespace haptics {
@@ -70,6 +72,57 @@ TEST(ServoLoop, RunsTicksAndReportsStatus) {
             summary.ticks);
   // Stop is idempotent.
   loop.Stop();
+}
+
+// Pose-triggered ticks (the default): a pose's arrival starts its tick, but
+// never more than one tick per period. A sender twice too fast in bursts of
+// ten does not raise the rate; a silent one still gets every tick from the
+// deadlines. Bookkeeping only: counts, not times.
+TEST(ServoLoop, PoseTriggeredTicksKeepTheRateForASteadyMissingOrBurstySender) {
+  const SceneConfig config = test::BoxOnBoxConfig();
+  const SceneModels models = BuildSceneModels(config);
+  HapticRenderer renderer(config, models);
+  LatestValue<PoseSample> poses;
+  ArrivalSignal arrivals;
+  RecordingSink sink;
+  ServoLoopOptions options;
+  options.realtime_priority = 0;
+  options.trigger = TickTrigger::kPose;
+  options.arrivals = &arrivals;
+  ServoLoop loop(&renderer, &poses, &sink, options);
+  int64_t seq = 0;
+  auto send = [&] {
+    PoseSample p = test::MakePose(++seq, Vector3(0, 0, 0.03));
+    timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    p.receive_time_ns = static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+    poses.Write(p);
+    arrivals.Notify();
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  loop.Start();
+  // Steady, 1 kHz for 0.4 s.
+  for (auto t = t0; t < t0 + std::chrono::milliseconds(400); t += std::chrono::milliseconds(1)) {
+    std::this_thread::sleep_until(t);
+    send();
+  }
+  // Silent for 0.3 s, then bursts of ten every 5 ms (2 kHz on average) for 0.3 s.
+  const auto t1 = t0 + std::chrono::milliseconds(700);
+  for (auto t = t1; t < t1 + std::chrono::milliseconds(300); t += std::chrono::milliseconds(5)) {
+    std::this_thread::sleep_until(t);
+    for (int i = 0; i < 10; ++i) send();
+  }
+  loop.Stop();
+  const LoopSummary s = loop.Summary();
+  EXPECT_TRUE(s.pose_triggered);
+  EXPECT_EQ(s.ticks_by_pose + s.ticks_by_deadline, s.ticks);
+  EXPECT_GT(s.ticks_by_pose, 100);      // the steady part and the bursts
+  EXPECT_GT(s.ticks_by_deadline, 200);  // the silent part at least
+  // Never above the nominal rate: the phase lock moves the deadlines, but
+  // keeps them within a period of the nominal grid.
+  EXPECT_LE(static_cast<double>(s.ticks), 1000.0 * s.elapsed_s + 3.0);
+  EXPECT_GT(static_cast<double>(s.ticks), 0.5 * 1000.0 * s.elapsed_s);
+  EXPECT_EQ(sink.gaps, 0);
 }
 
 }  // namespace
