@@ -3,6 +3,17 @@
 #include <chrono>
 
 namespace haptics {
+namespace {
+
+// Off the tick (geometry thread on or auto), a query that takes long stops
+// at its budget with its best verified answer; the next one goes on from it.
+pd::PolyDepthOptions GeometryOptions(const ContactConfig& contact, pd::PolyDepthOptions options) {
+  if (contact.geometry_thread != GeometryThreadMode::kOff && options.max_time_us <= 0.0)
+    options.max_time_us = contact.geometry_budget_s * 1e6;
+  return options;
+}
+
+}  // namespace
 
 HapticRenderer::HapticRenderer(const SceneConfig& config, const SceneModels& models,
                                const pd::PolyDepthOptions& pd_options)
@@ -11,7 +22,8 @@ HapticRenderer::HapticRenderer(const SceneConfig& config, const SceneModels& mod
       velocity_(config.coupling.velocity_filter_hz),
       envelope_(config.servo.soft_engage_s, config.servo.watchdog_timeout_s,
                 config.servo.watchdog_ramp_s),
-      geometry_(models.tool, models.X_TG, models.objects, config.contact, pd_options),
+      geometry_(models.tool, models.X_TG, models.objects, config.contact,
+                GeometryOptions(config.contact, pd_options)),
       local_(geometry_.num_objects(), config.contact,
              MakeLocalContactOptions(config.contact, config.device.max_force_rate,
                                      config.device.max_torque_rate, dt_)),

@@ -10,7 +10,11 @@ namespace probes {
 
 RerenderedSession RerenderSession(const haptics::SceneConfig& config,
                                   const haptics::SceneModels& models, const Session& session) {
-  haptics::HapticRenderer renderer(config, models);
+  // Every tick queries the geometry itself (no geometry thread): the
+  // recomputation is deterministic, one answer per recorded pose.
+  haptics::SceneConfig sync_config = config;
+  sync_config.contact.geometry_thread = haptics::GeometryThreadMode::kOff;
+  haptics::HapticRenderer renderer(sync_config, models);
   const double dt = renderer.dt();
   RerenderedSession out;
   out.frames.reserve(session.frames.size());
@@ -33,7 +37,7 @@ RerenderedSession RerenderSession(const haptics::SceneConfig& config,
     RenderedFrame rf;
     rf.X_WT = renderer.tool().X_W;
     rf.f_W = w.wrench.f_W;
-    const haptics::PenaltyContact& contact = renderer.penalty();
+    const haptics::ContactGeometry& contact = renderer.geometry();
     for (int i = 0; i < contact.num_objects(); ++i) {
       const pd::PenetrationResult& r = contact.last_result(i);
       if (!r.in_collision || !r.valid) continue;

@@ -151,6 +151,7 @@ TEST_F(ConfigTest, GeometryThreadHoldAgeingAndTickTrigger) {
   EXPECT_EQ(c.contact.geometry_thread, GeometryThreadMode::kAuto);
   EXPECT_DOUBLE_EQ(c.contact.invalid_hold_s, 0.2);
   EXPECT_DOUBLE_EQ(c.contact.model_max_age_s, 0.25);
+  EXPECT_DOUBLE_EQ(c.contact.geometry_budget_s, 0.002);
   EXPECT_TRUE(c.servo.pose_triggered);
   c = LoadSceneConfig(Write(kScene, "  damping: 5.0\ncoupling",
                             "  damping: 5.0\n  geometry_thread: on\n  invalid_hold_ms: 50\n"
@@ -160,6 +161,10 @@ TEST_F(ConfigTest, GeometryThreadHoldAgeingAndTickTrigger) {
   EXPECT_DOUBLE_EQ(c.contact.model_max_age_s, 0.03);
   EXPECT_DOUBLE_EQ(c.contact.model_age_ramp_s, 0.01);
   EXPECT_DOUBLE_EQ(c.contact.sync_budget, 0.5);
+  c = LoadSceneConfig(Write(kScene, "  damping: 5.0\ncoupling", "  damping: 5.0\n  geometry_budget_ms: 5\ncoupling"));
+  EXPECT_DOUBLE_EQ(c.contact.geometry_budget_s, 0.005);
+  ExpectError(Write(kScene, "  damping: 5.0\ncoupling", "  damping: 5.0\n  geometry_budget_ms: 0\ncoupling"),
+              "contact.geometry_budget_ms", {"ms"});
   c = LoadSceneConfig(Write(kScene, "  damping: 5.0\ncoupling", "  damping: 5.0\n  geometry_thread: off\ncoupling"));
   EXPECT_EQ(c.contact.geometry_thread, GeometryThreadMode::kOff);
   ExpectError(Write(kScene, "  damping: 5.0\ncoupling", "  damping: 5.0\n  geometry_thread: sometimes\ncoupling"),
