@@ -7,26 +7,10 @@
 #include <chrono>
 #include <string>
 
+#include "haptics/monotonic_clock.h"
 #include "haptics/realtime.h"
 
 namespace haptics {
-namespace {
-
-int64_t NowNs() {
-  timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-void SleepUntilNs(int64_t t_ns) {
-  timespec ts;
-  ts.tv_sec = t_ns / 1'000'000'000;
-  ts.tv_nsec = t_ns % 1'000'000'000;
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
-}
-
-}  // namespace
 
 GeometryWorker::GeometryWorker(ContactGeometry* geometry) : geometry_(geometry) {
   const int n = geometry_->num_objects();
@@ -44,7 +28,7 @@ void GeometryWorker::Post(const Isometry3& X_WT, int64_t tick) {
 bool GeometryWorker::idle() const { return !busy_.load() && answered_.load() == posted_.load(); }
 
 bool GeometryWorker::RunOnce(double min_query_time_s) {
-  const int64_t start = NowNs();
+  const int64_t start = MonotonicNowNs();
   busy_.store(true);
   const GeometryRequest* request = requests_.TakeNewest();
   if (request == nullptr) {
@@ -80,10 +64,10 @@ void GeometryThread::Stop() {
 }
 
 bool GeometryThread::WaitFinished(double timeout_s) const {
-  const int64_t until = NowNs() + static_cast<int64_t>(timeout_s * 1e9);
+  const int64_t until = MonotonicNowNs() + static_cast<int64_t>(timeout_s * 1e9);
   while (!finished_.load()) {
-    if (NowNs() >= until) return false;
-    SleepUntilNs(NowNs() + 1'000'000);
+    if (MonotonicNowNs() >= until) return false;
+    SleepUntilNs(MonotonicNowNs() + 1'000'000);
   }
   return true;
 }
@@ -109,7 +93,7 @@ void GeometryThread::Run() {
   }
   const int64_t idle_ns = static_cast<int64_t>(options_.idle_sleep_us * 1e3);
   while (!stop_.load(std::memory_order_relaxed)) {
-    const int64_t start = NowNs();
+    const int64_t start = MonotonicNowNs();
     if (!worker_->RunOnce(options_.min_query_time_s)) SleepUntilNs(start + idle_ns);
   }
   finished_ = true;

@@ -8,24 +8,11 @@
 #include <cmath>
 #include <string>
 
+#include "haptics/monotonic_clock.h"
 #include "haptics/realtime.h"
 
 namespace haptics {
 namespace {
-
-int64_t NowNs() {
-  timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-void SleepUntil(int64_t t_ns) {
-  timespec ts;
-  ts.tv_sec = t_ns / 1'000'000'000;
-  ts.tv_nsec = t_ns % 1'000'000'000;
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
-}
 
 size_t WindowTicks(const ServoLoopOptions& o) {
   return static_cast<size_t>(std::max(1.0, std::round(o.rate_hz / o.status_rate_hz)));
@@ -102,7 +89,7 @@ void ServoLoop::Run() {
   SetUpThread();
   const int64_t period_ns = std::llround(1e9 / options_.rate_hz);
   const size_t window = WindowTicks(options_);
-  start_ns_ = NowNs();
+  start_ns_ = MonotonicNowNs();
   int64_t next = start_ns_ + period_ns;
   int64_t prev_wake = -1;
   double period_us = 0.0;
@@ -121,13 +108,13 @@ void ServoLoop::Run() {
       // The window opens pose_window_us before the deadline; a pose waiting
       // or arriving in it starts the tick, else the deadline does.
       open = next - window_ns;
-      SleepUntil(open);
+      SleepUntilNs(open);
       const uint32_t seen = options_.arrivals->count();
       by_pose = poses_->HasNew() || options_.arrivals->WaitUntil(seen, next);
     } else {
-      SleepUntil(next);
+      SleepUntilNs(next);
     }
-    const int64_t wake = NowNs();
+    const int64_t wake = MonotonicNowNs();
     if (prev_wake >= 0) {
       period_us = static_cast<double>(wake - prev_wake) * 1e-3;
       const double jitter_us = std::abs(static_cast<double>(wake - prev_wake - period_ns)) * 1e-3;
@@ -185,7 +172,7 @@ void ServoLoop::Run() {
       }
     }
 
-    const int64_t end = NowNs();
+    const int64_t end = MonotonicNowNs();
     const double compute_us = static_cast<double>(end - wake) * 1e-3;
     window_compute_us_.Add(compute_us);
     compute_hist_.Add(compute_us);
@@ -221,7 +208,7 @@ void ServoLoop::Run() {
       window_ticks = 0;
     }
   }
-  end_ns_ = NowNs();
+  end_ns_ = MonotonicNowNs();
 }
 
 void ServoLoop::PublishStatus(int64_t now_ns, int64_t window_ticks, int64_t window_ns) {
