@@ -46,6 +46,7 @@ SCENES=(
   "knot_tool_elephant_bunny_164k bench/scenes/knot_tool_elephant_bunny_164k.yaml bench/scenes/knot_tool_elephant_bunny_164k.params.yaml"
   "box_on_box           config/box_on_box.yaml                 probes/trajectories/box_on_box.csv"
   "box_on_box_no_phase_lock bench/scenes/box_on_box_no_phase_lock.yaml probes/trajectories/box_on_box.csv"
+  "box_on_box_fixed_rate bench/scenes/box_on_box_fixed_rate.yaml probes/trajectories/box_on_box.csv"
   "spoon_in_cup         config/spoon_in_cup.yaml               probes/trajectories/spoon_in_cup.csv"
   "peg_in_hole          config/peg_in_hole.yaml                probes/trajectories/peg_in_hole.csv"
   "primitives_only      config/primitives_only.yaml            probes/trajectories/primitives_only.csv"
