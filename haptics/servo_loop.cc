@@ -105,12 +105,15 @@ void ServoLoop::Run() {
     bool by_pose = false;
     int64_t open = next;
     if (by_pose_mode) {
-      // The window opens pose_window_us before the deadline; a pose waiting
-      // or arriving in it starts the tick, else the deadline does.
+      // The window opens pose_window_us before the deadline; a pose arriving
+      // in it starts the tick, else the deadline does. A pose that came
+      // before the window opened does not start the tick: a fresher one is
+      // due in the window (it would otherwise lock the loop into taking each
+      // pose a period late), and the deadline renders it if none comes.
       open = next - window_ns;
       SleepUntilNs(open);
       const uint32_t seen = options_.arrivals->count();
-      by_pose = poses_->HasNew() || options_.arrivals->WaitUntil(seen, next);
+      by_pose = options_.arrivals->WaitUntil(seen, next);
     } else {
       SleepUntilNs(next);
     }
