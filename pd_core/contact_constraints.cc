@@ -29,7 +29,7 @@ namespace {
 // Shared by both entry points; with test_intersection, stops (returning
 // false) at the first intersecting triangle pair.
 bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool test_intersection,
-              std::vector<ContactConstraint>* out, int* witness_tp, int* witness_ts) {
+              std::vector<ContactConstraint>* out, CollisionWitness* witness) {
   out->clear();
   bool free = true;
   const double dist2 = distance * distance;
@@ -75,7 +75,7 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
         pair.SceneTriangle(ts, s);
         if (test_intersection && TrianglesIntersect(p[0], p[1], p[2], s[0], s[1], s[2])) {
           free = false;
-          if (witness_tp) *witness_tp = tp, *witness_ts = ts;
+          if (witness) *witness = {tp, ts};
           return false;
         }
         const uint8_t op = own_P[tp], os = own_S[ts];
@@ -156,14 +156,14 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
 
 void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double distance,
                                std::vector<ContactConstraint>* out) {
-  Localise(pair, q_S, distance, false, out, nullptr, nullptr);
+  Localise(pair, q_S, distance, false, out, nullptr);
 }
 
 bool CollectContactConstraintsIfSurfacesFree(const ModelPair& pair, const Vector3& q_S,
                                              double distance,
                                              std::vector<ContactConstraint>* out,
-                                             int* witness_tp, int* witness_ts) {
-  return Localise(pair, q_S, distance, true, out, witness_tp, witness_ts);
+                                             CollisionWitness* witness) {
+  return Localise(pair, q_S, distance, true, out, witness);
 }
 
 void RefreshContactConstraints(const ModelPair& pair, const Vector3& q_S,

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pd_core/mesh_collision.h"
 #include "pd_core/model_pair.h"
 
 namespace pd {
@@ -38,7 +39,7 @@ void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double
 bool CollectContactConstraintsIfSurfacesFree(const ModelPair& pair, const Vector3& q_S,
                                              double distance,
                                              std::vector<ContactConstraint>* out,
-                                             int* witness_tp = nullptr, int* witness_ts = nullptr);
+                                             CollisionWitness* witness = nullptr);
 
 // The same feature pairs as `in` (collected at an earlier pose of the pair),
 // their half-spaces re-evaluated at the pair's current pose with the probe

@@ -213,11 +213,14 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
 
   const bool warm = coherent && options_.warm_start;
   // How far any probe point moved since the previous frame (m).
-  const double motion =
-      (warm && (s.has_previous || s.has_previous_free))
-          ? (pair.X_SP.p_SP - s.previous_X_SP.p_SP).norm() +
-                RotationAngleBetween(s.previous_X_SP.R_SP, pair.X_SP.R_SP) * probe_->radius()
+  // (`turn`: its rotation's share, angle times the probe's radius.)
+  const bool moved_from_previous = warm && (s.has_previous || s.has_previous_free);
+  const double turn =
+      moved_from_previous
+          ? RotationAngleBetween(s.previous_X_SP.R_SP, pair.X_SP.R_SP) * probe_->radius()
           : 0.0;
+  const double motion =
+      moved_from_previous ? (pair.X_SP.p_SP - s.previous_X_SP.p_SP).norm() + turn : 0.0;
   // Incremental update, step one: the previous answer's feature pairs,
   // re-evaluated at the new pose, predict the new local contact model; its
   // in-projection q_pred predicts the answer (no geometry query needed).
@@ -274,7 +277,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (s.OutOfBudget()) break;
       s.constraints_q_S = Vector3::Constant(1e300);  // about to be overwritten
       if (!CollectContactConstraintsIfSurfacesFree(pair, q, contact_distance, &s.constraints,
-                                                   &s.witness.tp, &s.witness.ts) ||
+                                                   &s.witness) ||
           AnyComponentInside(pair, q))
         break;
       s.constraints_q_S = q;
@@ -309,7 +312,6 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     // translation undone (the probe back where it was free, off by the
     // rotation only), stepped off a little.
     const Vector3 back = s.previous_X_SP.p_SP - pair.X_SP.p_SP;
-    const double turn = RotationAngleBetween(s.previous_X_SP.R_SP, pair.X_SP.R_SP) * probe_->radius();
     const double step = motion + contact_distance, back_step = turn + contact_distance;
     const std::array<Vector3, 7> candidates = {
         s.previous_q_S + step * s.previous_n_S,

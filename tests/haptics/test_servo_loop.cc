@@ -78,27 +78,40 @@ TEST(ServoLoop, RunsTicksAndReportsStatus) {
 // never more than one tick per period. A sender twice too fast in bursts of
 // ten does not raise the rate; a silent one still gets every tick from the
 // deadlines. Bookkeeping only: counts, not times.
-TEST(ServoLoop, PoseTriggeredTicksKeepTheRateForASteadyMissingOrBurstySender) {
-  const SceneConfig config = test::BoxOnBoxConfig();
-  const SceneModels models = BuildSceneModels(config);
-  HapticRenderer renderer(config, models);
+// A pose-triggered loop on box_on_box fed by the test as a pose receiver
+// would: Send() stamps the receipt, publishes the pose and signals arrival.
+struct PoseTriggeredLoop {
+  SceneConfig config = test::BoxOnBoxConfig();
+  SceneModels models = BuildSceneModels(config);
+  HapticRenderer renderer{config, models};
   LatestValue<PoseSample> poses;
   ArrivalSignal arrivals;
   RecordingSink sink;
-  ServoLoopOptions options;
-  options.realtime_priority = 0;
-  options.trigger = TickTrigger::kPose;
-  options.arrivals = &arrivals;
-  ServoLoop loop(&renderer, &poses, &sink, options);
+  ServoLoop loop{&renderer, &poses, &sink, Options(&arrivals)};
   int64_t seq = 0;
-  auto send = [&] {
+
+  static ServoLoopOptions Options(ArrivalSignal* arrivals) {
+    ServoLoopOptions options;
+    options.realtime_priority = 0;
+    options.trigger = TickTrigger::kPose;
+    options.arrivals = arrivals;
+    return options;
+  }
+  void Send() {
     PoseSample p = test::MakePose(++seq, Vector3(0, 0, 0.03));
     timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     p.receive_time_ns = static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
     poses.Write(p);
     arrivals.Notify();
-  };
+  }
+};
+
+TEST(ServoLoop, PoseTriggeredTicksKeepTheRateForASteadyMissingOrBurstySender) {
+  PoseTriggeredLoop f;
+  auto& loop = f.loop;
+  auto& sink = f.sink;
+  auto send = [&] { f.Send(); };
   const auto t0 = std::chrono::steady_clock::now();
   loop.Start();
   // Steady, 1 kHz for 0.4 s.
@@ -131,26 +144,10 @@ TEST(ServoLoop, PoseTriggeredTicksKeepTheRateForASteadyMissingOrBurstySender) {
 // pose every tick took a pose about a period old and the phase lock, bounded
 // to a period, could not get out: the round trip stayed ~1 ms.)
 TEST(ServoLoop, PoseTriggeredTicksRecoverFromALatePose) {
-  const SceneConfig config = test::BoxOnBoxConfig();
-  const SceneModels models = BuildSceneModels(config);
-  HapticRenderer renderer(config, models);
-  LatestValue<PoseSample> poses;
-  ArrivalSignal arrivals;
-  RecordingSink sink;
-  ServoLoopOptions options;
-  options.realtime_priority = 0;
-  options.trigger = TickTrigger::kPose;
-  options.arrivals = &arrivals;
-  ServoLoop loop(&renderer, &poses, &sink, options);
-  int64_t seq = 0;
-  auto send = [&] {
-    PoseSample p = test::MakePose(++seq, Vector3(0, 0, 0.03));
-    timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    p.receive_time_ns = static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-    poses.Write(p);
-    arrivals.Notify();
-  };
+  PoseTriggeredLoop f;
+  auto& loop = f.loop;
+  auto& sink = f.sink;
+  auto send = [&] { f.Send(); };
   const auto t0 = std::chrono::steady_clock::now();
   loop.Start();
   // 1.5 s at 1 kHz; every 200th pose comes 0.7 ms late (the next is on time).
