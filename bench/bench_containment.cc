@@ -27,11 +27,11 @@
 #include "bench/machine_info.h"
 #include "bench/markdown_format.h"
 #include "bench/stats.h"
-#include "pd_core/load_mesh.h"
-#include "pd_core/make_shapes.h"
-#include "pd_core/mesh_collision.h"
-#include "pd_core/point_in_mesh.h"
-#include "pd_core/solid_containment.h"
+#include "pd_core/mesh/load_mesh.h"
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/point_in_mesh.h"
+#include "pd_core/proximity/solid_containment.h"
 
 #ifndef PD_SOURCE_DIR
 #define PD_SOURCE_DIR "."

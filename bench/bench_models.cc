@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "bench/stats.h"
-#include "pd_core/load_mesh.h"
-#include "pd_core/make_shapes.h"
+#include "pd_core/mesh/load_mesh.h"
+#include "pd_core/geometry/make_shapes.h"
 
 namespace pd_bench {
 

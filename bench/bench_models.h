@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "pd_core/collision_model.h"
+#include "pd_core/mesh/collision_model.h"
 
 namespace pd_bench {
 

@@ -11,7 +11,7 @@
 // fcl::Convex), timed the same way; FCL's depth is compared with ours (ours
 // is a certified upper bound, so FCL below ours is an FCL underestimate
 // whenever ours matches the reference). On --ref-poses of them the slow
-// reference PD (pd_core/reference_pd.h) on 2% circumscribed tessellations
+// reference PD (pd_core/reference/reference_pd.h) on 2% circumscribed tessellations
 // (exact for polytopes) gives the error of both. Writes primitives_pd.md and
 // primitives_pd.csv into --out (default bench/results).
 #include <CLI/CLI.hpp>
@@ -36,10 +36,10 @@
 #include "bench/machine_info.h"
 #include "bench/markdown_format.h"
 #include "bench/stats.h"
-#include "pd_core/make_shapes.h"
+#include "pd_core/geometry/make_shapes.h"
 #include "pd_core/pair_pd_solver.h"
-#include "pd_core/reference_pd.h"
-#include "pd_core/tessellate_geometry.h"
+#include "pd_core/reference/reference_pd.h"
+#include "pd_core/geometry/tessellate_geometry.h"
 
 #ifndef PD_SOURCE_DIR
 #define PD_SOURCE_DIR "."

@@ -9,7 +9,7 @@
 #include "bench/haptic_paths.h"
 #include "bench/machine_info.h"
 #include "bench/scenarios.h"
-#include "pd_core/pose.h"
+#include "pd_core/geometry/pose.h"
 
 namespace pd_bench {
 

@@ -16,7 +16,7 @@
 //       form over the mesh's hull), and the bunny (75k triangles) if found;
 //   (e) a general mesh pair for scale: the spoon tool on the cup (PolyDepth).
 // Also times loading a large mesh's precomputation with and without the disk
-// cache (pd_core/model_cache.h). Writes scene_cost.md, scene_cost.csv and
+// cache (pd_core/mesh/model_cache.h). Writes scene_cost.md, scene_cost.csv and
 // model_cache.csv into --out (default bench/results).
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -34,11 +34,11 @@
 #include "bench/machine_info.h"
 #include "bench/markdown_format.h"
 #include "bench/stats.h"
-#include "haptics/build_scene.h"
-#include "haptics/load_scene_config.h"
-#include "haptics/penalty_wrench.h"
-#include "pd_core/load_mesh.h"
-#include "pd_core/model_cache.h"
+#include "haptics/scene/build_scene.h"
+#include "haptics/scene/load_scene_config.h"
+#include "haptics/contact/penalty_wrench.h"
+#include "pd_core/mesh/load_mesh.h"
+#include "pd_core/mesh/model_cache.h"
 
 #ifndef PD_SOURCE_DIR
 #define PD_SOURCE_DIR "."
@@ -236,7 +236,7 @@ void WriteMarkdown(const std::vector<CaseResult>& cases, const std::vector<Cache
   }
   if (!cache.empty()) {
     md << "\n## Mesh precomputation with and without the disk cache\n\n"
-       << "`pd::BuildCollisionModelCached` (pd_core/model_cache.h), median of 3-5 runs: build without a cache, "
+       << "`pd::BuildCollisionModelCached` (pd_core/mesh/model_cache.h), median of 3-5 runs: build without a cache, "
           "first load into an empty cache directory (build + write), and a cached load (read, checksum, "
           "checks, compare the mesh).\n\n"
        << "| mesh | triangles | build ms | first load ms | cached load ms | speed-up | file MB |\n"

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "pd_core/pose.h"
+#include "pd_core/geometry/pose.h"
 
 namespace pd_bench {
 

@@ -11,8 +11,8 @@
 //    cost yardstick for a warm PD query, not a PD at all.
 #include <memory>
 
-#include "pd_core/mesh.h"
-#include "pd_core/pose.h"
+#include "pd_core/mesh/mesh.h"
+#include "pd_core/geometry/pose.h"
 
 namespace pd_bench {
 

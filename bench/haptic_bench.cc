@@ -4,9 +4,9 @@
 #include "bench/progress.h"
 #include "bench/reference_runner.h"
 #include "bench/summaries.h"
-#include "pd_core/mesh_collision.h"
-#include "pd_core/model_pair.h"
-#include "pd_core/polydepth.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/model_pair.h"
+#include "pd_core/polydepth/polydepth.h"
 
 namespace pd_bench {
 

@@ -1,7 +1,7 @@
 #include "bench/pd_runner.h"
 
-#include "pd_core/mesh_collision.h"
-#include "pd_core/model_pair.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/model_pair.h"
 
 namespace pd_bench {
 namespace {

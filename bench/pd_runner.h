@@ -4,7 +4,7 @@
 
 #include "bench/bench_results.h"
 #include "bench/progress.h"
-#include "pd_core/polydepth.h"
+#include "pd_core/polydepth/polydepth.h"
 
 namespace pd_bench {
 

@@ -5,8 +5,8 @@
 #include <mutex>
 #include <thread>
 
-#include "pd_core/mesh_collision.h"
-#include "pd_core/model_pair.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/model_pair.h"
 
 namespace pd_bench {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "bench/bench_results.h"
 #include "bench/progress.h"
-#include "pd_core/reference_pd.h"
+#include "pd_core/reference/reference_pd.h"
 
 namespace pd_bench {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bench/bench_models.h"
-#include "pd_core/pose.h"
+#include "pd_core/geometry/pose.h"
 
 namespace pd_bench {
 

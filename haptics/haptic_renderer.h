@@ -27,19 +27,19 @@
 // idle; `off` always queries in line.
 #include <cstdint>
 
-#include "haptics/build_scene.h"
-#include "haptics/device_velocity.h"
-#include "haptics/contact_geometry.h"
-#include "haptics/engage_envelope.h"
-#include "haptics/geometry_thread.h"
-#include "haptics/local_contact_model.h"
-#include "haptics/penalty_wrench.h"
-#include "haptics/pose_validation.h"
-#include "haptics/scene_config.h"
-#include "haptics/tool_dynamics.h"
-#include "haptics/virtual_coupling.h"
-#include "haptics/wrench_limiter.h"
-#include "haptics/wrench_output.h"
+#include "haptics/scene/build_scene.h"
+#include "haptics/tool/device_velocity.h"
+#include "haptics/contact/contact_geometry.h"
+#include "haptics/contact/engage_envelope.h"
+#include "haptics/contact/geometry_thread.h"
+#include "haptics/contact/local_contact_model.h"
+#include "haptics/contact/penalty_wrench.h"
+#include "haptics/io/pose_validation.h"
+#include "haptics/scene/scene_config.h"
+#include "haptics/tool/tool_dynamics.h"
+#include "haptics/tool/virtual_coupling.h"
+#include "haptics/tool/wrench_limiter.h"
+#include "haptics/io/wrench_output.h"
 
 namespace haptics {
 

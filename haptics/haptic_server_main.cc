@@ -10,7 +10,7 @@
 // haptics_msgs::server_status_t on the status channel at ~10 Hz. Channels,
 // rate and gains come from the config file (see config/box_on_box.yaml).
 // Logs go to stderr; at exit one summary line goes to stdout.
-// One device, one stream (haptics/pose_source_lock.h): the server renders the
+// One device, one stream (haptics/io/pose_source_lock.h): the server renders the
 // first sender (probe_pose_t.sender_session + sender_device) whose pose is
 // valid and rejects every other sender while that stream is alive; when it
 // has been silent for the watchdog timeout plus the ramp, the next valid
@@ -42,14 +42,14 @@
 #include <string>
 #include <string_view>
 
-#include "haptics/build_scene.h"
+#include "haptics/scene/build_scene.h"
 #include "haptics/haptic_renderer.h"
-#include "haptics/latest_value.h"
-#include "haptics/lcm_io.h"
-#include "haptics/load_scene_config.h"
-#include "haptics/realtime.h"
-#include "haptics/servo_loop.h"
-#include "pd_core/collision_model.h"
+#include "haptics/loop/latest_value.h"
+#include "haptics/io/lcm_io.h"
+#include "haptics/scene/load_scene_config.h"
+#include "haptics/loop/realtime.h"
+#include "haptics/loop/servo_loop.h"
+#include "pd_core/mesh/collision_model.h"
 
 namespace {
 

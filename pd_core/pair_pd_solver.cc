@@ -3,10 +3,10 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "pd_core/closed_form_pd.h"
-#include "pd_core/convex_pd.h"
-#include "pd_core/minkowski_difference.h"
-#include "pd_core/tessellate_geometry.h"
+#include "pd_core/convex/closed_form_pd.h"
+#include "pd_core/convex/convex_pd.h"
+#include "pd_core/convex/minkowski_difference.h"
+#include "pd_core/geometry/tessellate_geometry.h"
 
 namespace pd {
 

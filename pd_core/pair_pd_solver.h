@@ -17,7 +17,7 @@
 //    Spheres and capsules run as their core (point, segment) plus margin.
 //  - kPolyDepth: a general (non-convex) mesh against anything but a
 //    half-space. A primitive on the other side is tessellated once at
-//    construction (pd_core/tessellate_geometry.h), circumscribing it with a
+//    construction (pd_core/geometry/tessellate_geometry.h), circumscribing it with a
 //    chord error of at most kTessellationChordError (1%) of its radius (a
 //    sphere: 1280 triangles), so a translation that frees the tessellation
 //    frees the primitive; the depth is PolyDepth's for the tessellation and
@@ -33,10 +33,10 @@
 // free for the closed forms and GJK/EPA.
 #include <memory>
 
-#include "pd_core/geometry.h"
-#include "pd_core/penetration_result.h"
-#include "pd_core/polydepth.h"
-#include "pd_core/pose.h"
+#include "pd_core/geometry/geometry.h"
+#include "pd_core/polydepth/penetration_result.h"
+#include "pd_core/polydepth/polydepth.h"
+#include "pd_core/geometry/pose.h"
 
 namespace pd {
 

@@ -3,7 +3,7 @@
 #include <map>
 #include <utility>
 
-#include "pd_core/mesh.h"
+#include "pd_core/mesh/mesh.h"
 
 namespace pd::test {
 

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "pd_core/collision_model.h"
-#include "pd_core/load_mesh.h"
-#include "pd_core/parse_pose_line.h"
-#include "pd_core/penetration_result.h"
-#include "pd_core/polydepth.h"
+#include "pd_core/mesh/collision_model.h"
+#include "pd_core/mesh/load_mesh.h"
+#include "pd_core/geometry/parse_pose_line.h"
+#include "pd_core/polydepth/penetration_result.h"
+#include "pd_core/polydepth/polydepth.h"
 
 namespace {
 

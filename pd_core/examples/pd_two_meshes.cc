@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <exception>
 
-#include "pd_core/collision_model.h"
-#include "pd_core/load_mesh.h"
-#include "pd_core/polydepth.h"
+#include "pd_core/mesh/collision_model.h"
+#include "pd_core/mesh/load_mesh.h"
+#include "pd_core/polydepth/polydepth.h"
 
 int main(int argc, char** argv) {
   if (argc < 3) {

@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "haptics/build_scene.h"
-#include "haptics/scene_config.h"
+#include "haptics/scene/build_scene.h"
+#include "haptics/scene/scene_config.h"
 #include "probes/viewer/session_data.h"
 
 namespace probes {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "pd_core/pose.h"
+#include "pd_core/geometry/pose.h"
 
 namespace probes {
 

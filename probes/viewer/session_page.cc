@@ -8,7 +8,7 @@
 #include <ostream>
 #include <sstream>
 
-#include "pd_core/tessellate_geometry.h"
+#include "pd_core/geometry/tessellate_geometry.h"
 #include "probes/input_error.h"
 #include "probes/viewer/viewer_assets.h"
 

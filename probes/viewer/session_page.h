@@ -8,8 +8,8 @@
 #include <iosfwd>
 #include <string>
 
-#include "haptics/build_scene.h"
-#include "haptics/scene_config.h"
+#include "haptics/scene/build_scene.h"
+#include "haptics/scene/scene_config.h"
 #include "probes/viewer/rerender_session.h"
 #include "probes/viewer/session_data.h"
 

@@ -9,8 +9,8 @@
 #include <iostream>
 #include <string>
 
-#include "haptics/build_scene.h"
-#include "haptics/load_scene_config.h"
+#include "haptics/scene/build_scene.h"
+#include "haptics/scene/load_scene_config.h"
 #include "probes/channels.h"
 #include "probes/input_error.h"
 #include "probes/viewer/read_session.h"

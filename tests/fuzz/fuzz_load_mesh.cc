@@ -11,7 +11,7 @@
 #include <string>
 
 #include "fuzz_temp_file.h"
-#include "pd_core/load_mesh.h"
+#include "pd_core/mesh/load_mesh.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;

@@ -18,10 +18,10 @@
 #include <string>
 
 #include "fuzz_temp_file.h"
-#include "haptics/build_scene.h"
+#include "haptics/scene/build_scene.h"
 #include "haptics/haptic_renderer.h"
-#include "haptics/lcm_io.h"
-#include "haptics/load_scene_config.h"
+#include "haptics/io/lcm_io.h"
+#include "haptics/scene/load_scene_config.h"
 
 namespace {
 

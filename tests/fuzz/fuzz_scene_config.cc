@@ -7,7 +7,7 @@
 #include <string>
 
 #include "fuzz_temp_file.h"
-#include "haptics/load_scene_config.h"
+#include "haptics/scene/load_scene_config.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const bool linked = [] {

@@ -10,10 +10,10 @@
 
 #include <initializer_list>
 
-#include "haptics/build_scene.h"
-#include "haptics/load_scene_config.h"
-#include "haptics/pose_sample.h"
-#include "haptics/scene_config.h"
+#include "haptics/scene/build_scene.h"
+#include "haptics/scene/load_scene_config.h"
+#include "haptics/io/pose_sample.h"
+#include "haptics/scene/scene_config.h"
 
 namespace haptics::test {
 

@@ -1,9 +1,9 @@
-// The broad phase (haptics/broad_phase.h): never culls a pair that touches
+// The broad phase (haptics/contact/broad_phase.h): never culls a pair that touches
 // (random sweeps against brute-force PD of every pair), returns exactly the
 // objects whose boxes overlap the query, culls far objects and planes the
 // tool is above, and keeps the servo tick allocation-free and cold-starting
 // objects that left reach.
-#include "haptics/broad_phase.h"
+#include "haptics/contact/broad_phase.h"
 
 #include <gtest/gtest.h>
 
@@ -12,13 +12,13 @@
 #include <set>
 
 #include "alloc_counter.h"
-#include "haptics/load_scene_config.h"
-#include "haptics/penalty_wrench.h"
+#include "haptics/scene/load_scene_config.h"
+#include "haptics/contact/penalty_wrench.h"
 #include "haptics_test_util.h"
-#include "pd_core/make_shapes.h"
-#include "pd_core/model_cache.h"
-#include "pd_core/gjk.h"
-#include "pd_core/minkowski_difference.h"
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/mesh/model_cache.h"
+#include "pd_core/convex/gjk.h"
+#include "pd_core/convex/minkowski_difference.h"
 
 namespace haptics {
 namespace {

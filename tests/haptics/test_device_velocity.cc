@@ -1,8 +1,8 @@
-#include "haptics/device_velocity.h"
+#include "haptics/tool/device_velocity.h"
 
 #include <gtest/gtest.h>
 
-#include "haptics/rotation_vector.h"
+#include "haptics/tool/rotation_vector.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

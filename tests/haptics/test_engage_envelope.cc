@@ -1,8 +1,8 @@
-#include "haptics/engage_envelope.h"
+#include "haptics/contact/engage_envelope.h"
 
 #include <gtest/gtest.h>
 
-#include "haptics/wrench_output.h"
+#include "haptics/io/wrench_output.h"
 
 namespace haptics {
 namespace {

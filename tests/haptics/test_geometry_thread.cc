@@ -10,7 +10,7 @@
 //    thread stops.
 // Bookkeeping and physics are asserted; the only time bounds are gross (a
 // wrench gap below the 20 ms the query takes).
-#include "haptics/geometry_thread.h"
+#include "haptics/contact/geometry_thread.h"
 
 #include <gtest/gtest.h>
 
@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "haptics/haptic_renderer.h"
-#include "haptics/servo_loop.h"
+#include "haptics/loop/servo_loop.h"
 #include "alloc_counter.h"
-#include "haptics/wrench_output.h"
+#include "haptics/io/wrench_output.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

@@ -1,4 +1,4 @@
-#include "haptics/latest_value.h"
+#include "haptics/loop/latest_value.h"
 
 #include <gtest/gtest.h>
 

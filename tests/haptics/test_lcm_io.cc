@@ -1,5 +1,5 @@
 // The LCM transport over memq:// (in-process; no network).
-#include "haptics/lcm_io.h"
+#include "haptics/io/lcm_io.h"
 
 #include <gtest/gtest.h>
 

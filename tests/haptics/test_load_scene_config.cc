@@ -1,6 +1,6 @@
 // Config errors name the file, the key and the allowed range; unknown keys
 // are warned about; every shipped config loads and builds.
-#include "haptics/load_scene_config.h"
+#include "haptics/scene/load_scene_config.h"
 
 #include <gtest/gtest.h>
 #include <spdlog/sinks/ringbuffer_sink.h>
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <regex>
 
-#include "haptics/build_scene.h"
+#include "haptics/scene/build_scene.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

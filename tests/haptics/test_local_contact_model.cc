@@ -8,15 +8,15 @@
 //  - a new answer replaces the model without a jump larger than the device's
 //    rate limit per tick;
 //  - a model that is not refreshed ages out (ramps to zero, flagged).
-#include "haptics/local_contact_model.h"
+#include "haptics/contact/local_contact_model.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "haptics/contact_geometry.h"
-#include "haptics/penalty_wrench.h"
-#include "haptics/wrench_output.h"
+#include "haptics/contact/contact_geometry.h"
+#include "haptics/contact/penalty_wrench.h"
+#include "haptics/io/wrench_output.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

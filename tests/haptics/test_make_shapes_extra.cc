@@ -5,8 +5,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "pd_core/make_shapes.h"
-#include "pd_core/mesh_topology.h"
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/mesh/mesh_topology.h"
 #include "tests/mesh_checks.h"
 
 namespace pd {

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "haptics/build_scene.h"
-#include "haptics/load_scene_config.h"
+#include "haptics/scene/build_scene.h"
+#include "haptics/scene/load_scene_config.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

@@ -1,8 +1,8 @@
-// The disk cache of mesh precomputation (pd_core/model_cache.h): a cached
+// The disk cache of mesh precomputation (pd_core/mesh/model_cache.h): a cached
 // model equals a freshly built one field by field and gives the same PD
 // answers; corrupt, truncated or foreign files are detected and rebuilt; the
 // key follows the mesh content.
-#include "pd_core/model_cache.h"
+#include "pd_core/mesh/model_cache.h"
 
 #include <gtest/gtest.h>
 
@@ -11,11 +11,11 @@
 #include <fstream>
 #include <functional>
 
-#include "haptics/build_scene.h"
-#include "haptics/load_scene_config.h"
+#include "haptics/scene/build_scene.h"
+#include "haptics/scene/load_scene_config.h"
 #include "haptics_test_util.h"
-#include "pd_core/make_shapes.h"
-#include "pd_core/polydepth.h"
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/polydepth/polydepth.h"
 
 namespace haptics {
 namespace {

@@ -1,12 +1,12 @@
 // Penalty force and torque against analytic answers: a box pressed into a
 // box by a known depth, and a cube standing on one corner off the tool's axis.
-#include "haptics/penalty_wrench.h"
+#include "haptics/contact/penalty_wrench.h"
 
 #include <gtest/gtest.h>
 
 #include <functional>
 
-#include "haptics/wrench_output.h"
+#include "haptics/io/wrench_output.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

@@ -1,5 +1,5 @@
 // PhaseLock: the servo tick's phase follows pose arrival at a fixed rate.
-#include "haptics/phase_lock.h"
+#include "haptics/loop/phase_lock.h"
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
 // Pose order anomalies: the pure monitor, the receiver's counters over
 // memq:// (no network), and their way into the status message.
-#include "haptics/pose_sequence.h"
+#include "haptics/io/pose_sequence.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
 #include <tuple>
 
-#include "haptics/lcm_io.h"
+#include "haptics/io/lcm_io.h"
 
 namespace haptics {
 namespace {

@@ -1,6 +1,6 @@
 // The pose source lock: one sender rendered, others rejected while it is
 // alive, takeover after silence, pins, identity changes.
-#include "haptics/pose_source_lock.h"
+#include "haptics/io/pose_source_lock.h"
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "haptics/lcm_io.h"
-#include "haptics/load_scene_config.h"
+#include "haptics/io/lcm_io.h"
+#include "haptics/scene/load_scene_config.h"
 #include "haptics_msgs/probe_pose_v1_t.hpp"
 
 namespace haptics {

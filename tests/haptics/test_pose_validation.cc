@@ -1,4 +1,4 @@
-#include "haptics/pose_validation.h"
+#include "haptics/io/pose_validation.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "haptics/rotation_vector.h"
+#include "haptics/tool/rotation_vector.h"
 
 #include <gtest/gtest.h>
 

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <filesystem>
 
-#include "haptics/build_scene.h"
+#include "haptics/scene/build_scene.h"
 #include "haptics/haptic_renderer.h"
-#include "haptics/load_scene_config.h"
-#include "haptics/penalty_wrench.h"
+#include "haptics/scene/load_scene_config.h"
+#include "haptics/contact/penalty_wrench.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "haptics/build_scene.h"
+#include "haptics/scene/build_scene.h"
 #include "haptics/haptic_renderer.h"
-#include "haptics/load_scene_config.h"
-#include "haptics/rotation_vector.h"
+#include "haptics/scene/load_scene_config.h"
+#include "haptics/tool/rotation_vector.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

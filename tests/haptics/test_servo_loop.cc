@@ -1,7 +1,7 @@
 // The servo thread end to end without a network: poses in through the
 // lock-free hand-over, wrenches out to a sink. Liveness and bookkeeping only;
 // no timing is asserted (that belongs to benchmarks).
-#include "haptics/servo_loop.h"
+#include "haptics/loop/servo_loop.h"
 
 #include <gtest/gtest.h>
 

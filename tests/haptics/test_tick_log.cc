@@ -11,8 +11,8 @@
 #include <thread>
 
 #include "alloc_counter.h"
-#include "haptics/servo_loop.h"
-#include "haptics/timing_stats.h"
+#include "haptics/loop/servo_loop.h"
+#include "haptics/loop/timing_stats.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

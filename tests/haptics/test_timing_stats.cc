@@ -1,4 +1,4 @@
-#include "haptics/timing_stats.h"
+#include "haptics/loop/timing_stats.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-#include "haptics/tool_dynamics.h"
+#include "haptics/tool/tool_dynamics.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
 
-#include "haptics/rotation_vector.h"
+#include "haptics/tool/rotation_vector.h"
 
 namespace haptics {
 namespace {

@@ -1,10 +1,10 @@
-#include "haptics/virtual_coupling.h"
+#include "haptics/tool/virtual_coupling.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 
-#include "haptics/rotation_vector.h"
+#include "haptics/tool/rotation_vector.h"
 
 namespace haptics {
 namespace {

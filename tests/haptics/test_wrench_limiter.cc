@@ -1,10 +1,10 @@
-#include "haptics/wrench_limiter.h"
+#include "haptics/tool/wrench_limiter.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
 
-#include "haptics/wrench_output.h"
+#include "haptics/io/wrench_output.h"
 #include "haptics_test_util.h"
 
 namespace haptics {

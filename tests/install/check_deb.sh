@@ -11,7 +11,7 @@ deb=$(ls "$work"/polydepth-haptics_*.deb 2>/dev/null | head -n 1)
 [[ -n "$deb" ]] || fail "no polydepth-haptics_*.deb in $work"
 dpkg-deb -c "$deb" | awk '{ print $6 }' >"$work/contents.txt"
 for f in ./usr/bin/haptic_server ./usr/bin/probe_replay ./usr/bin/session_viewer ./usr/bin/pd_query \
-         ./usr/lib/libpd_core.a ./usr/include/pd_core/polydepth.h ./usr/include/haptics_msgs/wrench_t.hpp \
+         ./usr/lib/libpd_core.a ./usr/include/pd_core/polydepth/polydepth.h ./usr/include/haptics_msgs/wrench_t.hpp \
          ./usr/share/polydepth_haptics/lcm/probe_pose_t.lcm \
          ./usr/share/polydepth_haptics/config/devices/sigma7.yaml \
          ./usr/lib/cmake/PolyDepthHaptics/PolyDepthHapticsConfig.cmake; do

@@ -13,7 +13,7 @@ cmake --install "$build" --prefix "$stage" >"$stage.log" 2>&1 || { cat "$stage.l
 share="$stage/share/polydepth_haptics"
 for f in bin/haptic_server bin/pd_query bin/probe_replay bin/probe_sim bin/probe_recorder \
          bin/echo_server bin/session_viewer lib/libpd_core.a \
-         include/pd_core/polydepth.h include/pd_core/load_mesh.h include/pd_core/pose.h \
+         include/pd_core/polydepth/polydepth.h include/pd_core/mesh/load_mesh.h include/pd_core/geometry/pose.h \
          include/haptics_msgs/probe_pose_t.hpp include/haptics_msgs/wrench_t.hpp include/haptics_msgs/sender_identity.h \
          include/haptics_msgs/server_status_t.hpp \
          share/polydepth_haptics/lcm/probe_pose_t.lcm share/polydepth_haptics/lcm/wrench_t.lcm \

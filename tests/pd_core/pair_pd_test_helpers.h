@@ -6,10 +6,10 @@
 #include <cmath>
 #include <random>
 
-#include "pd_core/geometry.h"
-#include "pd_core/make_shapes.h"
-#include "pd_core/reference_pd.h"
-#include "pd_core/tessellate_geometry.h"
+#include "pd_core/geometry/geometry.h"
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/reference/reference_pd.h"
+#include "pd_core/geometry/tessellate_geometry.h"
 
 namespace pd {
 namespace test {

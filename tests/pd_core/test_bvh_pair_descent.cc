@@ -1,4 +1,4 @@
-// The one BVH pair descent (pd_core/bvh_pair_descent.h): it visits exactly
+// The one BVH pair descent (pd_core/proximity/bvh_pair_descent.h): it visits exactly
 // the leaf pairs a brute-force sweep keeps, in any tree shape, including
 // trees deeper than its fixed stack (which once overflowed silently), and
 // depth is measured from the links, not trusted.
@@ -8,7 +8,7 @@
 #include <set>
 #include <utility>
 
-#include "pd_core/bvh_pair_descent.h"
+#include "pd_core/proximity/bvh_pair_descent.h"
 
 namespace pd {
 namespace {

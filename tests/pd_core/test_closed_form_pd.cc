@@ -11,8 +11,8 @@
 #include <cmath>
 #include <random>
 
-#include "pd_core/closed_form_pd.h"
-#include "pd_core/make_shapes.h"
+#include "pd_core/convex/closed_form_pd.h"
+#include "pd_core/geometry/make_shapes.h"
 #include "pair_pd_test_helpers.h"
 
 namespace pd {

@@ -8,12 +8,12 @@
 #include <memory>
 #include <random>
 
-#include "pd_core/load_mesh.h"
-#include "pd_core/make_shapes.h"
-#include "pd_core/mesh_collision.h"
-#include "pd_core/point_in_mesh.h"
-#include "pd_core/polydepth.h"
-#include "pd_core/reference_pd.h"
+#include "pd_core/mesh/load_mesh.h"
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/point_in_mesh.h"
+#include "pd_core/polydepth/polydepth.h"
+#include "pd_core/reference/reference_pd.h"
 #include "tests/prerequisites.h"
 
 namespace pd {

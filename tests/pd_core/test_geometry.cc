@@ -6,10 +6,10 @@
 #include <limits>
 #include <random>
 
-#include "pd_core/convexity_check.h"
-#include "pd_core/geometry.h"
-#include "pd_core/make_shapes.h"
-#include "pd_core/tessellate_geometry.h"
+#include "pd_core/mesh/convexity_check.h"
+#include "pd_core/geometry/geometry.h"
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/geometry/tessellate_geometry.h"
 #include "pair_pd_test_helpers.h"
 
 namespace pd {

@@ -1,4 +1,4 @@
-// Our GJK + EPA (pd_core/convex_pd.h) against analytic answers, the slow
+// Our GJK + EPA (pd_core/convex/convex_pd.h) against analytic answers, the slow
 // reference PD (exact for polytopes; on 2% tessellations for curved
 // primitives, within their measured tessellation error) and FCL 0.7's own
 // GJK/EPA as a cross-check: ours must be at least as accurate as FCL on every
@@ -15,8 +15,8 @@
 #include <cmath>
 #include <random>
 
-#include "pd_core/convex_pd.h"
-#include "pd_core/make_shapes.h"
+#include "pd_core/convex/convex_pd.h"
+#include "pd_core/geometry/make_shapes.h"
 #include "pair_pd_test_helpers.h"
 
 namespace pd {

@@ -4,7 +4,7 @@
 // duplicate vertices, open meshes and polygon soups, needles. Every answer
 // must be finite and verified collision-free (independently, by the
 // reference code), its iteration count bounded, and its depth within a
-// stated tolerance above the slow reference PD (pd_core/reference_pd.h),
+// stated tolerance above the slow reference PD (pd_core/reference/reference_pd.h),
 // which gets no hint from the solver; where the case has an analytic PD, the
 // answer is checked against it too. Both answers are upper bounds on the true
 // PD (verified free), so ours below the reference means the reference
@@ -18,9 +18,9 @@
 #include <memory>
 #include <string>
 
-#include "pd_core/make_shapes.h"
-#include "pd_core/polydepth.h"
-#include "pd_core/reference_pd.h"
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/polydepth/polydepth.h"
+#include "pd_core/reference/reference_pd.h"
 
 namespace pd {
 namespace {

@@ -1,4 +1,4 @@
-#include "pd_core/load_mesh.h"
+#include "pd_core/mesh/load_mesh.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "pd_core/make_shapes.h"
+#include "pd_core/geometry/make_shapes.h"
 #include "tests/prerequisites.h"
 
 namespace pd {

@@ -1,4 +1,4 @@
-#include "pd_core/make_shapes.h"
+#include "pd_core/geometry/make_shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "pd_core/mesh_topology.h"
-#include "pd_core/triangle_geometry.h"
+#include "pd_core/mesh/mesh_topology.h"
+#include "pd_core/proximity/triangle_geometry.h"
 #include "tests/mesh_checks.h"
 
 namespace pd {

@@ -12,7 +12,7 @@
 #include <random>
 #include <string>
 
-#include "pd_core/load_mesh.h"
+#include "pd_core/mesh/load_mesh.h"
 
 namespace pd {
 namespace {

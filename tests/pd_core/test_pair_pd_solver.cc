@@ -8,8 +8,8 @@
 #include <map>
 #include <random>
 
-#include "pd_core/convex_pd.h"
-#include "pd_core/make_shapes.h"
+#include "pd_core/convex/convex_pd.h"
+#include "pd_core/geometry/make_shapes.h"
 #include "pd_core/pair_pd_solver.h"
 #include "pair_pd_test_helpers.h"
 

@@ -1,4 +1,4 @@
-#include "pd_core/parse_pose_line.h"
+#include "pd_core/geometry/parse_pose_line.h"
 
 #include <gtest/gtest.h>
 

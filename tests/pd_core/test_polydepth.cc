@@ -13,9 +13,9 @@
 #include <random>
 #include <thread>
 
-#include "pd_core/make_shapes.h"
-#include "pd_core/polydepth.h"
-#include "pd_core/reference_pd.h"
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/polydepth/polydepth.h"
+#include "pd_core/reference/reference_pd.h"
 
 namespace pd {
 namespace {

@@ -1,6 +1,6 @@
 // Tests of the slow reference PD against cases with known answers, and of its
 // collision test against FCL.
-#include "pd_core/reference_pd.h"
+#include "pd_core/reference/reference_pd.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "pd_core/make_shapes.h"
+#include "pd_core/geometry/make_shapes.h"
 
 namespace pd {
 namespace {

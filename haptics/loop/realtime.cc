@@ -1,0 +1,66 @@
+#include "haptics/loop/realtime.h"
+
+#include <pthread.h>
+#include <sched.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <cstring>
+
+namespace haptics {
+
+bool TrySetFifoScheduling(int priority, std::string* why) {
+  sched_param param{};
+  param.sched_priority = priority;
+  const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
+  if (err != 0) {
+    *why = std::string("pthread_setschedparam(SCHED_FIFO, ") + std::to_string(priority) +
+           "): " + std::strerror(err);
+    return false;
+  }
+  return true;
+}
+
+bool TrySetNormalScheduling(std::string* why) {
+  sched_param param{};
+  param.sched_priority = 0;
+  const int err = pthread_setschedparam(pthread_self(), SCHED_OTHER, &param);
+  if (err != 0) {
+    *why = std::string("pthread_setschedparam(SCHED_OTHER): ") + std::strerror(err);
+    return false;
+  }
+  return true;
+}
+
+bool TryPinToCpu(int cpu, std::string* why) {
+  if (cpu < 0 || cpu >= CPU_SETSIZE) {
+    *why = "cpu " + std::to_string(cpu) + " out of range";
+    return false;
+  }
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(cpu, &set);
+  const int err = pthread_setaffinity_np(pthread_self(), sizeof(set), &set);
+  if (err != 0) {
+    *why = "pthread_setaffinity_np(cpu " + std::to_string(cpu) + "): " + std::strerror(err);
+    return false;
+  }
+  return true;
+}
+
+bool TryLockMemory(std::string* why) {
+  if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+    *why = std::string("mlockall: ") + std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+
+void NameThisThread(const char* name) { pthread_setname_np(pthread_self(), name); }
+
+int NumCpus() {
+  const long n = sysconf(_SC_NPROCESSORS_ONLN);
+  return n > 0 ? static_cast<int>(n) : 1;
+}
+
+}  // namespace haptics

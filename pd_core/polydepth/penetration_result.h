@@ -1,0 +1,60 @@
+#pragma once
+// What a penetration-depth query returns. All vectors are in world W, lengths
+// in metres. The probe P is the moving mesh; the scene object S is the other.
+#include <array>
+#include <cstdint>
+
+#include "pd_core/geometry/pose.h"
+
+namespace pd {
+
+// Which initialiser produced the collision-free start that won.
+enum class Initializer : uint8_t {
+  kNone = 0,           // no collision, nothing to solve
+  kMotionCoherence,    // previous answer of this pair
+  kMaximallyClear,     // precomputed support-plane separations of the models
+  kCentroidDifference, // straight out along centroid_P - centroid_S
+  kRandom,             // random directions
+  kSamplingSearch,     // dense directional sampling (last resort)
+};
+const char* InitializerName(Initializer init);
+
+// A contact region: features of P and S that touch when P is moved by the PD
+// translation, grouped by normal. Its local PD is (d·n) n, d the PD vector.
+struct ContactRegion {
+  Vector3 p_W = Vector3::Zero();   // contact point on P at the query pose (m)
+  Vector3 n_W = Vector3::UnitZ();  // unit normal, pointing from S into P's escape side
+  double local_depth = 0.0;        // d·n (m), >= 0
+  int num_features = 0;            // feature pairs merged into this region
+  Vector3 local_pd_W() const { return local_depth * n_W; }
+};
+
+inline constexpr int kMaxContactRegions = 16;
+
+struct PenetrationResult {
+  bool in_collision = false;  // P at the query pose intersects or is contained in S
+  bool valid = true;          // translation verified to leave P collision-free
+  double depth = 0.0;         // |translation| (m); an upper bound on the true PD
+  Vector3 translation_W = Vector3::Zero();  // move P by this to separate (m)
+  Vector3 normal_W = Vector3::Zero();       // translation / depth (unit), zero if free
+  std::array<ContactRegion, kMaxContactRegions> regions{};
+  int num_regions = 0;
+  int num_contacts = 0;  // feature pairs (vertex-face, face-vertex, edge-edge) at the answer
+  int iterations = 0;    // contact-space projection iterations
+  Initializer initializer = Initializer::kNone;
+  // False when a work budget (PolyDepthOptions::max_work) stopped the search
+  // early: the answer is still verified free (an upper bound), just not
+  // known to be a local optimum.
+  bool converged = true;
+  // Warm-started (coherent) queries: no coherent start gave an answer and
+  // the query restarted cold.
+  bool warm_start_failed = false;
+  // A coherent answer had grown much deeper than its anchor and was checked
+  // against the cold starts (the shorter one on the same side won).
+  bool cross_checked = false;
+  int64_t box_tests = 0;       // bounding-box tests this query made (cost counter)
+  int64_t triangle_tests = 0;  // triangle-pair tests this query made
+  double time_us = 0.0;  // solver wall time (microseconds)
+};
+
+}  // namespace pd

@@ -1,0 +1,488 @@
+#include "pd_core/polydepth/polydepth.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "pd_core/proximity/candidate_pairs.h"
+#include "pd_core/polydepth/contact_constraints.h"
+#include "pd_core/polydepth/contact_regions.h"
+#include "pd_core/geometry/fibonacci_sphere.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/solid_containment.h"
+#include "pd_core/polydepth/min_norm_point.h"
+#include "pd_core/proximity/model_pair.h"
+#include "pd_core/polydepth/support_plane_starts.h"
+#include "pd_core/proximity/translational_ccd.h"
+
+namespace pd {
+
+const char* InitializerName(Initializer init) {
+  switch (init) {
+    case Initializer::kNone: return "none";
+    case Initializer::kMotionCoherence: return "motion_coherence";
+    case Initializer::kMaximallyClear: return "maximally_clear";
+    case Initializer::kCentroidDifference: return "centroid_difference";
+    case Initializer::kRandom: return "random";
+    case Initializer::kSamplingSearch: return "sampling_search";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// Cross-check a coherent answer with cold starts once it is this many times
+// deeper than its anchor plus this fraction of the pair's size.
+constexpr double kReanchorGrowth = 1.5;
+constexpr double kReanchorFloor = 5e-3;
+
+// A collision-free configuration and where it came from.
+struct Start {
+  Vector3 q_S;
+  Initializer origin;
+  double contact_norm = 0.0;  // |q| after the first out-projection
+  Vector3 contact_q_S = Vector3::Zero();
+};
+
+}  // namespace
+
+namespace {
+
+// Out-projection: from a free q_from toward q_to, the last free point before
+// first contact, backed off by `margin` (m) along the motion. Returns q_to if
+// the whole segment is free. *touched tells which.
+Vector3 OutProject(const ModelPair& pair, const Vector3& q_from, const Vector3& q_to,
+                   double margin, bool* touched) {
+  const Vector3 d = q_to - q_from;
+  const double len = d.norm();
+  if (len <= 0.0) {
+    *touched = false;
+    return q_to;
+  }
+  const double s = FirstContactAlongTranslation(pair, q_from, d);
+  if (s < 0) {
+    *touched = false;
+    return q_to;
+  }
+  *touched = true;
+  return q_from + std::max(0.0, s - margin / len) * d;
+}
+
+}  // namespace
+
+struct PolyDepthSolver::Impl {
+  std::vector<ContactConstraint> constraints;
+  MinNormScratch qp;
+  std::vector<Start> starts;
+  std::vector<SupportPlaneStart> support_starts;
+  std::mt19937_64 rng;
+  CandidatePairs candidates;  // leaf pairs near the last contact (warm start)
+  CollisionWitness witness;   // a triangle pair that intersected lately
+  ProximityCounters counters;
+  std::vector<ContactConstraint> previous_constraints;  // at the previous answer
+  double anchor_depth = 0.0;  // |q| the coherent answers are measured against (m)
+  // Work budget (PolyDepthOptions::max_work / max_time_us) of this query.
+  int64_t work_limit = 0;
+  double time_limit_us = 0.0;
+  std::chrono::steady_clock::time_point t_start;
+  bool stopped_early = false;
+  // True once the budget is spent and some verified answer exists.
+  bool OutOfBudget() {
+    if (best_origin == Initializer::kNone || !BudgetSpent()) return false;
+    return stopped_early = true;
+  }
+  bool BudgetSpent() const {
+    return (work_limit > 0 && counters.box_tests + counters.triangle_tests >= work_limit) ||
+           (time_limit_us > 0 &&
+            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t_start)
+                    .count() >= time_limit_us);
+  }
+  // Warm-start state, relative to the scene (so a moving scene is fine).
+  bool has_previous = false;       // previous frame collided and was solved
+  bool has_previous_free = false;  // previous frame was collision-free
+  Vector3 previous_q_S = Vector3::Zero();
+  Vector3 previous_n_S = Vector3::Zero();
+  RelativePose previous_X_SP;
+
+  // Where `constraints` were last localised (they are reused for regions).
+  Vector3 constraints_q_S = Vector3::Constant(1e300);
+  // Best verified-free contact configuration of the current query.
+  Vector3 best_q_S = Vector3::Zero();
+  double best_norm = 0.0;
+  Initializer best_origin = Initializer::kNone;
+  int iterations = 0;
+
+  // Iterates localisation, in-projection and out-projection from a contact
+  // configuration q_c (free, touching) until |q| stops improving.
+  void Iterate(const ModelPair& pair, const PolyDepthOptions& opt, double size, Vector3 q_c,
+               Initializer origin) {
+  Impl& s = *this;
+  const double tol = opt.convergence_tol * size;
+  const double margin = opt.separation_margin * size;
+  const double contact_distance = opt.contact_tol * size;
+  s.Offer(q_c, origin);
+  double norm_c = q_c.norm();
+  for (int it = 0; it < opt.max_iterations; ++it) {
+    if (s.OutOfBudget()) break;
+    ++s.iterations;
+    // Localise the contact space at q_c and in-project toward the query.
+    CollectContactConstraints(pair, q_c, contact_distance, &s.constraints);
+    s.constraints_q_S = q_c;
+    if (s.constraints.empty()) break;
+    // Aim strictly inside free space: an exactly touching target is
+    // ambiguous under round-off, a target `margin` clear is not.
+    for (ContactConstraint& c : s.constraints) c.c += margin;
+    const MinNormResult qp = MinNormPoint(s.constraints, tol, &s.qp);
+    const Vector3 q_new = qp.q;
+    if (q_new.norm() >= norm_c - tol) break;  // q_c is locally optimal
+    // Move toward q_new; if it is reachable free, out-project to the query.
+    bool touched = false;
+    Vector3 q_next = OutProject(pair, q_c, q_new, margin, &touched);
+    if (!touched) q_next = OutProject(pair, q_new, Vector3::Zero(), margin, &touched);
+    if (!touched) break;  // reached the query free: cannot happen when colliding
+    const double norm_next = q_next.norm();
+    const bool improved = norm_next < norm_c - tol;
+    q_c = q_next;
+    norm_c = norm_next;
+    s.Offer(q_c, origin);
+    if (!improved) break;
+  }
+}
+
+  void Offer(const Vector3& q_S, Initializer origin) {
+    const double n = q_S.norm();
+    if (n < best_norm) {
+      best_norm = n;
+      best_q_S = q_S;
+      best_origin = origin;
+    }
+  }
+};
+
+PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
+                                 std::shared_ptr<const CollisionModel> scene,
+                                 PolyDepthOptions options)
+    : probe_(std::move(probe)), scene_(std::move(scene)), options_(options),
+      impl_(std::make_unique<Impl>()) {
+  impl_->rng.seed(options_.seed);
+  impl_->constraints.reserve(1024);
+  impl_->previous_constraints.reserve(1024);
+  impl_->starts.reserve(64);
+  impl_->qp.unique.reserve(1024);
+  impl_->qp.lambda.reserve(1024);
+}
+
+PolyDepthSolver::~PolyDepthSolver() = default;
+
+void PolyDepthSolver::ResetWarmStart() {
+  impl_->candidates.Invalidate();
+  impl_->previous_constraints.clear();
+  impl_->witness = CollisionWitness{};
+  impl_->anchor_depth = 0.0;
+  impl_->has_previous = false;
+  impl_->has_previous_free = false;
+}
+
+
+
+PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3& X_WS,
+                                         bool coherent) {
+  Impl& s = *impl_;
+  s.t_start = std::chrono::steady_clock::now();
+  PenetrationResult result;
+  ModelPair pair(*probe_, *scene_, X_WP, X_WS);
+  pair.candidates = &s.candidates;
+  s.counters = ProximityCounters{};
+  pair.counters = &s.counters;
+  s.work_limit = options_.max_work;
+  s.time_limit_us = options_.max_time_us;
+  s.stopped_early = false;
+  const double size = pair.size();
+  const double margin = options_.separation_margin * size;
+  const double contact_distance = options_.contact_tol * size;
+  s.iterations = 0;
+  s.constraints_q_S = Vector3::Constant(1e300);
+  auto finish = [&] {
+    result.box_tests = s.counters.box_tests;
+    result.triangle_tests = s.counters.triangle_tests;
+    result.time_us = std::chrono::duration<double, std::micro>(
+                         std::chrono::steady_clock::now() - s.t_start).count();
+    return result;
+  };
+
+  const bool warm = coherent && options_.warm_start;
+  // How far any probe point moved since the previous frame (m).
+  // (`turn`: its rotation's share, angle times the probe's radius.)
+  const bool moved_from_previous = warm && (s.has_previous || s.has_previous_free);
+  const double turn =
+      moved_from_previous
+          ? RotationAngleBetween(s.previous_X_SP.R_SP, pair.X_SP.R_SP) * probe_->radius()
+          : 0.0;
+  const double motion =
+      moved_from_previous ? (pair.X_SP.p_SP - s.previous_X_SP.p_SP).norm() + turn : 0.0;
+  // Incremental update, step one: the previous answer's feature pairs,
+  // re-evaluated at the new pose, predict the new local contact model; its
+  // in-projection q_pred predicts the answer (no geometry query needed).
+  bool have_prediction = false;
+  Vector3 q_pred = Vector3::Zero();
+  // The prediction is a first-order model of a small motion: after a jump
+  // (more than kPredictionMotion of the pair's size since the last answer)
+  // the contact may have changed shape and the restarts below decide.
+  constexpr double kPredictionMotion = 5e-3;
+  if (warm && s.has_previous && !s.previous_constraints.empty() &&
+      motion <= kPredictionMotion * size) {
+    RefreshContactConstraints(pair, s.previous_q_S, s.previous_constraints, &s.constraints);
+    for (ContactConstraint& c : s.constraints) c.c += margin;
+    q_pred = MinNormPoint(s.constraints, options_.convergence_tol * size, &s.qp).q;
+    have_prediction = q_pred.allFinite();
+  }
+  // Keep the leaf-pair list around where this query will work: the
+  // prediction, else the configuration we restart from, with room for the
+  // motion and the iterations' contact distance.
+  if (warm && (s.has_previous || s.has_previous_free)) {
+    const Vector3 center = have_prediction  ? q_pred
+                           : s.has_previous ? s.previous_q_S
+                                            : Vector3(s.previous_X_SP.p_SP - pair.X_SP.p_SP);
+    const double need = (have_prediction ? 0.0 : 2.0 * motion) + 6.0 * contact_distance;
+    if (!s.candidates.Covers(pair, center, center, need))
+      s.candidates.Build(pair, center, options_.candidate_radius * size + need);
+  }
+
+  result.in_collision = InCollision(pair, Vector3::Zero(), &s.witness);
+  if (!result.in_collision) {
+    // Remember this free pose: the next contact starts from it.
+    s.has_previous = false;
+    s.has_previous_free = true;
+    s.previous_X_SP = pair.X_SP;
+    s.previous_constraints.clear();
+    s.anchor_depth = 0.0;
+    return finish();
+  }
+  s.best_norm = 1e300;
+  s.best_origin = Initializer::kNone;
+  // The configuration last verified free by a full collision test (so the
+  // final check need not repeat it).
+  Vector3 verified_q_S = Vector3::Constant(1e300);
+
+  // 0. Incremental update, step two: from the prediction, localise and test
+  // the surfaces in one pass; while the configuration is free, in-project on
+  // what was found there and try the result the same way (a free target
+  // needs no out-projection). Stops at a local optimum, or hands a colliding
+  // target to the out-projecting iteration from the last free point.
+  if (have_prediction) {
+    const double tol = options_.convergence_tol * size;
+    Vector3 q = q_pred;
+    for (int k = 0; k < options_.max_iterations; ++k) {
+      if (s.OutOfBudget()) break;
+      s.constraints_q_S = Vector3::Constant(1e300);  // about to be overwritten
+      if (!CollectContactConstraintsIfSurfacesFree(pair, q, contact_distance, &s.constraints,
+                                                   &s.witness) ||
+          AnyComponentInside(pair, q))
+        break;
+      s.constraints_q_S = q;
+      verified_q_S = q;
+      if (s.constraints.empty()) {
+        // Free but off the contact space (the probe moved away from the
+        // contact): land on it toward the query, then go on from there.
+        bool touched = false;
+        const Vector3 q_c = OutProject(pair, q, Vector3::Zero(), margin, &touched);
+        if (!touched) break;
+        q = q_c;
+        continue;
+      }
+      ++s.iterations;
+      s.Offer(q, Initializer::kMotionCoherence);
+      for (ContactConstraint& c : s.constraints) c.c += margin;
+      const Vector3 q_new = MinNormPoint(s.constraints, tol, &s.qp).q;
+      if (!(q_new.norm() < q.norm() - tol)) break;  // q is locally optimal
+      q = q_new;
+    }
+    // The last target collided: continue from the last free point the usual
+    // way (its out-projection lands on the contact space before the target).
+    if (s.best_origin != Initializer::kNone && q != verified_q_S)
+      s.Iterate(pair, options_, size, verified_q_S, Initializer::kMotionCoherence);
+  }
+
+  // 1. Motion coherence: step off the previous answer along its normal by
+  // about the motion since then, verify freedom, and iterate from there.
+  if (warm && s.has_previous && s.best_origin == Initializer::kNone) {
+    // Free candidates, nearest first: the previous answer stepped off along
+    // its normal by about the motion; the previous answer with the motion's
+    // translation undone (the probe back where it was free, off by the
+    // rotation only), stepped off a little.
+    const Vector3 back = s.previous_X_SP.p_SP - pair.X_SP.p_SP;
+    const double step = motion + contact_distance, back_step = turn + contact_distance;
+    const std::array<Vector3, 7> candidates = {
+        s.previous_q_S + step * s.previous_n_S,
+        s.previous_q_S + back + back_step * s.previous_n_S,
+        s.previous_q_S + 4.0 * step * s.previous_n_S,
+        s.previous_q_S + back + 4.0 * back_step * s.previous_n_S,
+        s.previous_q_S + back + 16.0 * back_step * s.previous_n_S,
+        s.previous_q_S + 16.0 * step * s.previous_n_S,
+        s.previous_q_S + 64.0 * step * s.previous_n_S};
+    for (const Vector3& q0 : candidates) {
+      if (InCollision(pair, q0)) continue;
+      bool touched = false;
+      const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
+      if (touched) s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
+      break;
+    }
+  }
+
+  // 1b. Coming from a free frame: put the probe back where it was then (a
+  // free place a short way back along the motion) and out-project from there.
+  if (warm && !s.has_previous && s.has_previous_free && s.best_origin == Initializer::kNone) {
+    const Vector3 back = s.previous_X_SP.p_SP - pair.X_SP.p_SP;
+    const double len = back.norm();
+    if (len > 0.0) {
+      double offset = contact_distance;
+      for (int attempt = 0; attempt < 3; ++attempt, offset *= 4.0) {
+        const Vector3 q0 = back + offset * (back / len);
+        if (InCollision(pair, q0)) continue;
+        bool touched = false;
+        const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
+        if (touched) {
+          s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
+        } else {
+          // Free all the way: the query only touches (the CCD counts no
+          // contact at the very end). Back off along the motion by the
+          // margin; without this the cold starts answered from outside the
+          // scene's hull, through the wall (tests/pd_core/test_hard_cases.cc).
+          const Vector3 q_b = margin * (back / len);
+          if (!InCollision(pair, q_b)) s.Iterate(pair, options_, size, q_b, Initializer::kMotionCoherence);
+        }
+        break;
+      }
+    }
+  }
+
+  // 2. Cold starts: the fallback when coherence found nothing, and the
+  // cross-check of a coherent answer that has grown much deeper than where it
+  // was last anchored (a followed local optimum can drift far from the PD).
+  bool cross_checking = false;
+  auto cold_starts = [&] {
+    s.starts.clear();
+    ComputeSupportPlaneStarts(pair, &s.support_starts);
+    // Maximally clear: the best support-plane separations of the two models.
+    for (int i = 0; i < std::min<int>(options_.num_maximally_clear, s.support_starts.size()); ++i)
+      s.starts.push_back({s.support_starts[i].q_S, Initializer::kMaximallyClear});
+    if (options_.use_centroid) {
+      const Vector3 d = pair.X_SP * probe_->centroid() - scene_->centroid();
+      if (d.norm() > 1e-9 * size)
+        s.starts.push_back({SupportPlaneTranslation(pair, d.normalized()),
+                            Initializer::kCentroidDifference});
+    }
+    std::normal_distribution<double> gauss;
+    for (int i = 0; i < options_.num_random; ++i) {
+      Vector3 u(gauss(s.rng), gauss(s.rng), gauss(s.rng));
+      if (u.norm() < 1e-9) continue;
+      s.starts.push_back({SupportPlaneTranslation(pair, u.normalized()), Initializer::kRandom});
+    }
+    // Out-project every start once, then iterate from the closest few. A
+    // cross-check (a coherent answer in hand) gives up when the budget is spent.
+    for (Start& st : s.starts) {
+      st.contact_norm = 1e300;
+      if (cross_checking && s.BudgetSpent()) continue;
+      bool touched = false;
+      st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched);
+      st.contact_norm = touched ? st.contact_q_S.norm() : 1e300;
+    }
+    std::sort(s.starts.begin(), s.starts.end(),
+              [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });
+    for (int i = 0; i < std::min<int>(options_.num_iterated_starts, s.starts.size()); ++i) {
+      if (s.starts[i].contact_norm >= 1e300) break;
+      if ((i > 0 || cross_checking) && (s.OutOfBudget() || (cross_checking && s.BudgetSpent()))) break;
+      s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin);
+    }
+  };
+  const bool warm_found = s.best_origin != Initializer::kNone;
+  result.warm_start_failed = warm && (s.has_previous || s.has_previous_free) && !warm_found;
+  if (!warm_found) {
+    cold_starts();
+  } else if (s.anchor_depth > 0.0 &&
+             s.best_norm > kReanchorGrowth * s.anchor_depth + kReanchorFloor * size &&
+             !s.OutOfBudget()) {
+    const Vector3 warm_q = s.best_q_S;
+    const double warm_norm = s.best_norm;
+    const Initializer warm_origin = s.best_origin;
+    s.best_norm = 1e300;
+    s.best_origin = Initializer::kNone;
+    cross_checking = true;
+    cold_starts();
+    cross_checking = false;
+    if (s.BudgetSpent()) s.stopped_early = true;  // the check was cut short
+    // Take a shorter cold answer unless it points back through the object
+    // (more than 120 degrees from the coherent one): a thin wall pushed from
+    // one side keeps pushing back, it never flips to the far side.
+    const bool better = s.best_origin != Initializer::kNone &&
+                        s.best_norm < warm_norm - options_.convergence_tol * size &&
+                        s.best_q_S.dot(warm_q) > -0.5 * s.best_norm * warm_norm;
+    if (!better) {
+      s.best_q_S = warm_q;
+      s.best_norm = warm_norm;
+      s.best_origin = warm_origin;
+    }
+    result.cross_checked = true;
+    s.anchor_depth = s.best_norm;
+  }
+
+  // 3. Verify; fall back to a dense directional search if needed (not when
+  // the budget is spent: then the answer is reported invalid instead).
+  auto verified = [&] {
+    return s.best_origin != Initializer::kNone &&
+           (s.best_q_S == verified_q_S || !InCollision(pair, s.best_q_S));
+  };
+  bool valid = verified();
+  if (!valid && options_.num_sampling_directions > 0 && !s.stopped_early) {
+    s.best_norm = 1e300;
+    s.best_origin = Initializer::kNone;
+    Vector3 best_contact = Vector3::Zero();
+    double best_norm = 1e300;
+    const int n = options_.num_sampling_directions;
+    for (int i = 0; i < n; ++i) {
+      const Vector3 u = FibonacciDirection(i, n);
+      bool touched = false;
+      const Vector3 q_c =
+          OutProject(pair, SupportPlaneTranslation(pair, u), Vector3::Zero(), margin, &touched);
+      if (touched && q_c.norm() < best_norm) best_norm = q_c.norm(), best_contact = q_c;
+    }
+    if (best_norm < 1e300)
+      s.Iterate(pair, options_, size, best_contact, Initializer::kSamplingSearch);
+    valid = verified();
+  }
+
+  result.valid = valid;
+  result.converged = !s.stopped_early;
+  result.iterations = s.iterations;
+  result.initializer = s.best_origin;
+  if (s.best_origin != Initializer::kNone) {
+    const Matrix3 R_WS = X_WS.linear();
+    result.translation_W = R_WS * s.best_q_S;
+    result.depth = s.best_norm;
+    result.normal_W = s.best_norm > 0 ? Vector3(result.translation_W / s.best_norm)
+                                      : Vector3::Zero();
+    if (s.constraints_q_S != s.best_q_S)
+      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
+    result.num_contacts = static_cast<int>(s.constraints.size());
+    GroupContactRegions(s.constraints, s.best_q_S, X_WS, 0.1 * size, &result);
+  }
+  s.has_previous_free = false;
+  // The anchor follows the shallowest answer since the last cross-check
+  // (or the first of a contact); see step 2.
+  if (valid) s.anchor_depth = s.anchor_depth > 0.0 ? std::min(s.anchor_depth, s.best_norm) : s.best_norm;
+  else s.anchor_depth = 0.0;
+  if (valid) {
+    s.has_previous = true;
+    s.previous_q_S = s.best_q_S;
+    s.previous_n_S = s.best_q_S / std::max(s.best_norm, 1e-300);
+    s.previous_X_SP = pair.X_SP;
+    s.previous_constraints = s.constraints;
+  } else {
+    s.has_previous = false;
+    s.previous_constraints.clear();
+  }
+  return finish();
+}
+
+}  // namespace pd

@@ -1,0 +1,88 @@
+#pragma once
+// PolyDepth: translational penetration depth between a probe mesh P and a scene
+// mesh S by iterative contact-space projection (Je, Tang, Lee, Lee, Kim, ACM
+// TOG 2012), in double precision with tolerances relative to model size.
+//
+// One PolyDepthSolver per (probe, scene) pair: it owns that pair's warm-start
+// state and scratch memory, so different pairs can be solved on different
+// threads at once. The CollisionModels are immutable and shared.
+//
+// Algorithm (see polydepth.cc for details):
+//  1. Collision test at the query (surface intersection or solid containment).
+//  2. Collision-free starts from the initialisers, in this order: motion
+//     coherence (if warm-started), maximally clear configurations, centroid
+//     difference, random directions; sampling-based search only if the others
+//     fail to converge to a verified answer.
+//  3. Out-projection: translational CCD from the start toward the query lands
+//     on the contact space.
+//  4. Localisation: feature pairs within contact_tol give half-spaces
+//     n_i·q >= c_i in translation space.
+//  5. In-projection: min |q| subject to them (an LCP solved by projected
+//     Gauss-Seidel to convergence).
+//  6. Repeat 3-5 until |q| stops improving by more than convergence_tol.
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "pd_core/mesh/collision_model.h"
+#include "pd_core/polydepth/penetration_result.h"
+#include "pd_core/geometry/pose.h"
+
+namespace pd {
+
+struct PolyDepthOptions {
+  int max_iterations = 40;         // projection iterations per start
+  // All tolerances are fractions of the pair's size (sum of bounding radii).
+  double convergence_tol = 1e-5;   // stop when |q| improves less than this
+  double contact_tol = 1e-4;       // feature pairs closer than this are constraints
+  double separation_margin = 1e-8; // answers are backed off by this to be strictly free
+  int num_maximally_clear = 3;     // best support-plane starts tried on a cold query
+  bool use_centroid = true;
+  int num_random = 2;              // random-direction starts on a cold query
+  int num_iterated_starts = 3;     // cold starts refined, closest contact first
+  int num_sampling_directions = 64;  // fallback directional search
+  bool warm_start = true;          // honour `coherent` in Solve
+  // Warm-started queries keep a list of the leaf pairs within this distance
+  // of the previous contact and reuse it while the probe stays inside that
+  // budget (fraction of size). Larger: rebuilt less often, longer to walk.
+  double candidate_radius = 3e-3;
+  // Bounded time for real-time callers: after this much work (box plus
+  // triangle tests; 0 = unbounded) or wall time (us; 0 = unbounded), Solve
+  // stops searching and returns its best verified-free answer so far with
+  // converged = false. It never returns a colliding answer: without any
+  // verified answer yet it continues to the first one.
+  int64_t max_work = 0;
+  double max_time_us = 0.0;
+  uint64_t seed = 12345;
+};
+
+class PolyDepthSolver {
+ public:
+  PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
+                  std::shared_ptr<const CollisionModel> scene,
+                  PolyDepthOptions options = {});
+  ~PolyDepthSolver();
+  PolyDepthSolver(const PolyDepthSolver&) = delete;
+  PolyDepthSolver& operator=(const PolyDepthSolver&) = delete;
+
+  // PD of probe at X_WP against scene at X_WS. With coherent = true the
+  // previous answer of this pair warm-starts the search (a moving probe).
+  PenetrationResult Solve(const Isometry3& X_WP, const Isometry3& X_WS,
+                          bool coherent = false);
+
+  // Forgets the previous answer (e.g. after a jump of the probe).
+  void ResetWarmStart();
+
+  const PolyDepthOptions& options() const { return options_; }
+  const CollisionModel& probe() const { return *probe_; }
+  const CollisionModel& scene() const { return *scene_; }
+
+ private:
+  struct Impl;
+  std::shared_ptr<const CollisionModel> probe_, scene_;
+  PolyDepthOptions options_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pd

@@ -1,0 +1,67 @@
+#pragma once
+// Verlet-style list of the BVH leaf pairs of a probe and a scene object that
+// lie within a distance (the radius) of one configuration, each with a lower
+// bound on its boxes' gap there, sorted by that gap. A later configuration
+// whose probe points all moved by at most D (rotation angle times radius plus
+// the centre's motion) can only bring a listed pair within d if its gap is at
+// most d + D: queries walk that prefix of the list alone, a few pairs near
+// the contact instead of a descent of both hierarchies, and every pair that
+// can touch is in the list while D + d stays below the radius.
+#include <cstdint>
+#include <vector>
+
+#include "pd_core/proximity/model_pair.h"
+
+namespace pd {
+
+class CandidatePairs {
+ public:
+  struct Entry {
+    int32_t ip, is;  // leaf node indices (probe BVH, scene BVH)
+    double gap;      // lower bound on the boxes' distance at the build configuration (m)
+  };
+
+  CandidatePairs() { entries_.reserve(4096); }
+
+  // Collects the leaf pairs whose boxes are within `radius` (m) of each other
+  // with the probe at the pair's pose translated by q_center_S.
+  void Build(const ModelPair& pair, const Vector3& q_center_S, double radius);
+
+  // Upper bound on how far any probe point is from where it was at the build
+  // configuration, for `pair`'s pose translated by q_S (m); +inf when the
+  // list is not this pair's or not valid.
+  double Displacement(const ModelPair& pair, const Vector3& q_S) const;
+
+  // True if every configuration of `pair` translated by a point of the
+  // segment [q_a_S, q_b_S], grown by `extra` (m), lies within the budget.
+  bool Covers(const ModelPair& pair, const Vector3& q_a_S, const Vector3& q_b_S,
+              double extra) const;
+
+  // For the sweep q_from_S + s * sweep_S: the largest s in [0, 1] up to which
+  // every configuration (grown by `extra`) is covered, or a negative value
+  // if the start is not covered.
+  double CoveredFraction(const ModelPair& pair, const Vector3& q_from_S, const Vector3& sweep_S,
+                         double extra) const;
+
+  // How many leading entries can come within `distance` at configurations
+  // displaced by at most `displacement` (the rest cannot).
+  int NearCount(double distance, double displacement) const;
+
+  void Invalidate() { valid_ = false; }
+  bool valid() const { return valid_; }
+  double radius() const { return radius_; }
+  const std::vector<Entry>& entries() const { return entries_; }
+
+ private:
+  // Rotation part of the displacement bound (m) and the centre's motion.
+  void Motion(const ModelPair& pair, double* rotation_bound, Vector3* center_shift_S) const;
+  bool valid_ = false;
+  RelativePose X_SP_;
+  Vector3 q_center_S_ = Vector3::Zero();
+  double radius_ = 0.0;
+  const CollisionModel* probe_ = nullptr;
+  const CollisionModel* scene_ = nullptr;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace pd

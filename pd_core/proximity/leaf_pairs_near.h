@@ -1,0 +1,43 @@
+#pragma once
+// The leaf pairs a query at a configuration (or along a segment of them)
+// must look at: from the pair's candidate list when that covers the
+// configurations (only its near prefix, see candidate_pairs.h), otherwise
+// from a BVH descent. Both paths apply the same node test, so the caller sees
+// the same pairs either way, minus those the list proves too far.
+#include "pd_core/proximity/bvh_pair_descent.h"
+#include "pd_core/proximity/candidate_pairs.h"
+#include "pd_core/proximity/model_pair.h"
+
+namespace pd {
+
+// Calls on_leaf_pair(ip, is) for every leaf pair that passes
+// may_touch(a, b) among those that can come within `distance` (m) of each
+// other with the probe translated by a point of [q_a_S, q_b_S].
+template <typename NodeTest, typename LeafFn>
+void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vector3& q_b_S,
+                         double distance, NodeTest&& may_touch, LeafFn&& on_leaf_pair) {
+  const CandidatePairs* list = pair.candidates;
+  if (list != nullptr) {
+    const double displacement =
+        std::max(list->Displacement(pair, q_a_S), list->Displacement(pair, q_b_S));
+    if (displacement + distance < list->radius()) {
+      const int n = list->NearCount(distance, displacement);
+      const auto& entries = list->entries();
+      const auto& nodes_P = pair.P.bvh().nodes();
+      const auto& nodes_S = pair.S.bvh().nodes();
+      if (pair.counters) pair.counters->box_tests += n;
+      for (int k = 0; k < n; ++k) {
+        const CandidatePairs::Entry& e = entries[k];
+        if (!may_touch(nodes_P[e.ip], nodes_S[e.is])) continue;
+        if (!on_leaf_pair(e.ip, e.is)) return;
+      }
+      return;
+    }
+  }
+  DescendBvhPair(
+      pair.P.bvh(), pair.S.bvh(),
+      [&](const BvhNode& a, const BvhNode& b, double*) { return may_touch(a, b); },
+      [](double) { return true; }, on_leaf_pair, pair.counters);
+}
+
+}  // namespace pd

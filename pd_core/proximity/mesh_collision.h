@@ -1,0 +1,25 @@
+#pragma once
+// Boolean collision of a probe against a scene object: surfaces intersect, or
+// one closed solid holds the other (a probe wholly inside counts as colliding).
+#include "pd_core/proximity/model_pair.h"
+
+namespace pd {
+
+// A triangle pair (probe, scene) that intersected at some earlier query:
+// tested first by the next one, which then usually answers "colliding" with
+// a single triangle test (the contact moves little between haptic ticks).
+struct CollisionWitness {
+  int tp = -1, ts = -1;
+};
+
+// Any probe triangle intersecting any scene triangle, probe moved by
+// offset_S. `witness` (optional) is tried first and updated on a hit.
+bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S,
+                       CollisionWitness* witness = nullptr);
+
+// SurfacesIntersect, or a part of one mesh inside the other's solid, either
+// way, for closed meshes (pd_core/proximity/solid_containment.h).
+bool InCollision(const ModelPair& pair, const Vector3& offset_S,
+                 CollisionWitness* witness = nullptr);
+
+}  // namespace pd

@@ -1,0 +1,43 @@
+#pragma once
+// A probe model P posed in a scene model's frame S: the shared context of all
+// pair queries. Every query takes an extra translation `offset_S` of the probe
+// (expressed in S), the configuration-space point PolyDepth moves through.
+#include "pd_core/proximity/bvh_pair_descent.h"
+#include "pd_core/mesh/collision_model.h"
+#include "pd_core/geometry/relative_pose.h"
+
+namespace pd {
+
+class CandidatePairs;
+
+struct ModelPair {
+  const CollisionModel& P;
+  const CollisionModel& S;
+  RelativePose X_SP;
+  // Optional leaf-pair list of this pair (see candidate_pairs.h); queries
+  // use it instead of descending the BVHs when it covers their configurations.
+  const CandidatePairs* candidates = nullptr;
+  // Optional cost accounting of the queries on this pair.
+  ProximityCounters* counters = nullptr;
+
+  ModelPair(const CollisionModel& probe, const CollisionModel& scene, const Isometry3& X_WP,
+            const Isometry3& X_WS)
+      : P(probe), S(scene), X_SP(RelativePose::FromWorld(X_WS, X_WP)) {}
+
+  // Probe vertex v in S at translation offset_S.
+  Vector3 ProbeVertex(int v, const Vector3& offset_S) const {
+    return X_SP * P.mesh().vertices[v] + offset_S;
+  }
+  void ProbeTriangle(int t, const Vector3& offset_S, Vector3 out[3]) const {
+    const auto& tri = P.mesh().triangles[t];
+    for (int k = 0; k < 3; ++k) out[k] = ProbeVertex(tri[k], offset_S);
+  }
+  void SceneTriangle(int t, Vector3 out[3]) const {
+    const auto& tri = S.mesh().triangles[t];
+    for (int k = 0; k < 3; ++k) out[k] = S.mesh().vertices[tri[k]];
+  }
+  // Sum of bounding radii: the length that relative tolerances multiply.
+  double size() const { return P.radius() + S.radius(); }
+};
+
+}  // namespace pd

@@ -1,0 +1,105 @@
+#include "pd_core/proximity/translational_ccd.h"
+
+#include <algorithm>
+
+#include "pd_core/proximity/box_overlap.h"
+#include "pd_core/proximity/bvh_pair_descent.h"
+#include "pd_core/proximity/candidate_pairs.h"
+#include "pd_core/proximity/triangle_geometry.h"
+
+namespace pd {
+namespace {
+
+// Earliest contact of one probe triangle swept along sweep_S with one scene
+// triangle, over the features each owns. Lowers *s_best on a hit.
+void TriangleFirstContact(const ModelPair& pair, int tp, int ts, const Vector3& offset_S,
+                          const Vector3& sweep_S, double* s_best, bool* hit) {
+  Vector3 p[3], s[3];
+  pair.ProbeTriangle(tp, offset_S, p);
+  pair.SceneTriangle(ts, s);
+  const uint8_t op = pair.P.owned_features()[tp], os = pair.S.owned_features()[ts];
+  auto consider = [&](double t) {
+    if (t >= 0 && t <= *s_best) {
+      *s_best = t;
+      *hit = true;
+    }
+  };
+  const Vector3 back_S = -sweep_S;
+  for (int k = 0; k < 3; ++k) {
+    if (op & (1u << k)) consider(RayTriangle(p[k], sweep_S, s[0], s[1], s[2], *s_best));
+    if (os & (1u << k)) consider(RayTriangle(s[k], back_S, p[0], p[1], p[2], *s_best));
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (!(op & (8u << i))) continue;
+    for (int j = 0; j < 3; ++j) {
+      if (!(os & (8u << j))) continue;
+      consider(EdgeEdgeTranslationalContact(p[i], p[(i + 1) % 3], s[j], s[(j + 1) % 3], sweep_S,
+                                            *s_best));
+    }
+  }
+}
+
+}  // namespace
+
+double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset_S,
+                                    const Vector3& sweep_S) {
+  const Bvh& bvh_P = pair.P.bvh();
+  const Bvh& bvh_S = pair.S.bvh();
+  if (bvh_P.empty() || bvh_S.empty()) return -1.0;
+  double s_best = 1.0;
+  bool hit = false;
+  double lo, hi;
+  auto leaf_contacts = [&](int ip, int is) {
+    return ForEachTrianglePair(bvh_P, bvh_S, ip, is, [&](int tp, int ts) {
+      if (pair.counters) ++pair.counters->triangle_tests;
+      TriangleFirstContact(pair, tp, ts, offset_S, sweep_S, &s_best, &hit);
+      return true;
+    });
+  };
+  const CandidatePairs* list = pair.candidates;
+  const double covered = list ? list->CoveredFraction(pair, offset_S, sweep_S, 0.0) : -1.0;
+  if (covered > 0.0) {
+    // Every pair that can touch on [0, s] is in the list's prefix for the
+    // largest displacement over that part of the sweep; a first contact
+    // found there is exact. First contacts are usually close to the start
+    // (a start just off the contact space), so look at short parts first,
+    // doubling up to the covered fraction; past it, the full descent.
+    const auto& nodes_P = bvh_P.nodes();
+    const auto& nodes_S = bvh_S.nodes();
+    const double start_displacement = list->Displacement(pair, offset_S);
+    const double sweep_len = sweep_S.norm();
+    double s_part = std::min(covered, 0.05 * list->radius() / std::max(sweep_len, 1e-300));
+    for (;;) {
+      s_best = s_part;
+      const double displacement = start_displacement + s_part * sweep_len;
+      const int n = list->NearCount(0.0, displacement);
+      if (pair.counters) pair.counters->box_tests += n;
+      for (int k = 0; k < n; ++k) {
+        const CandidatePairs::Entry& e = list->entries()[k];
+        if (SweptBoxContactInterval(ProbeBox(nodes_P[e.ip], pair.X_SP, offset_S), nodes_S[e.is],
+                                    sweep_S, s_best, &lo, &hi))
+          leaf_contacts(e.ip, e.is);
+      }
+      if (hit) return s_best;
+      if (s_part >= covered) break;
+      s_part = std::min(covered, 4.0 * s_part);
+    }
+    if (covered >= 1.0) return -1.0;
+    s_best = 1.0;
+  }
+  // Nearer-in-time node pairs first; a pair whose earliest possible contact
+  // is later than the best contact so far is dropped when popped.
+  DescendBvhPair(
+      bvh_P, bvh_S,
+      [&](const BvhNode& a, const BvhNode& b, double* key) {
+        if (!SweptBoxContactInterval(ProbeBox(a, pair.X_SP, offset_S), b, sweep_S, s_best, &lo,
+                                     &hi))
+          return false;
+        *key = lo;
+        return true;
+      },
+      [&](double s_lo) { return s_lo <= s_best; }, leaf_contacts, pair.counters);
+  return hit ? s_best : -1.0;
+}
+
+}  // namespace pd
