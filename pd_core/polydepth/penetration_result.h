@@ -52,6 +52,9 @@ struct PenetrationResult {
   // A coherent answer had grown much deeper than its anchor and was checked
   // against the cold starts (the shorter one on the same side won).
   bool cross_checked = false;
+  // Times the answer was found inside a pocket of free space thinner than
+  // PolyDepthOptions::pocket_thickness and moved on out of it.
+  int pocket_escapes = 0;
   int64_t box_tests = 0;       // bounding-box tests this query made (cost counter)
   int64_t triangle_tests = 0;  // triangle-pair tests this query made
   double time_us = 0.0;  // solver wall time (microseconds)

@@ -434,6 +434,45 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
            (s.best_q_S == verified_q_S || !InCollision(pair, s.best_q_S));
   };
   bool valid = verified();
+  // 3a. Out of thin pockets: an answer that collides again a pocket's
+  // thickness further along itself sits in a sliver of free space (the probe
+  // wedged against a feature that leans over it); the next frame's step-off
+  // along it lands in that feature and restarts cold. The answer's own
+  // feature pairs flag it (one that the step would push through), a
+  // collision test confirms, and the answer moves out to where the ray
+  // through it last leaves the scene, iterating on from there.
+  const double thickness = options_.pocket_thickness * size;
+  Vector3 exit_q = Vector3::Zero();  // the shortest ray exit found (free beyond)
+  double exit_norm = 1e300;
+  for (int round = 0; valid && thickness > 0.0 && s.best_norm > 0.0; ++round) {
+    const Vector3 n = s.best_q_S / s.best_norm;
+    if (s.constraints_q_S != s.best_q_S) {
+      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
+      s.constraints_q_S = s.best_q_S;
+    }
+    const bool suspect = std::any_of(s.constraints.begin(), s.constraints.end(), [&](const ContactConstraint& c) {
+      const double along = c.n_S.dot(n);
+      return along < 0.0 && c.n_S.dot(s.best_q_S) - c.c + thickness * along < 0.0;
+    });
+    if (!suspect || !InCollision(pair, s.best_q_S + thickness * n)) break;
+    ++result.pocket_escapes;
+    const Initializer origin = s.best_origin;
+    if (round == 2) {
+      // Iterating from the exits led back into pockets: keep the exit.
+      if (exit_norm < 1e300) s.best_q_S = exit_q, s.best_norm = exit_norm;
+      break;
+    }
+    bool touched = false;
+    const Vector3 q_exit =
+        OutProject(pair, SupportPlaneTranslation(pair, n), s.best_q_S, margin, &touched);
+    if (!touched) break;
+    if (q_exit.norm() < exit_norm) exit_q = q_exit, exit_norm = q_exit.norm();
+    s.best_norm = 1e300;
+    s.best_origin = Initializer::kNone;
+    s.Iterate(pair, options_, size, q_exit, origin);
+    verified_q_S = Vector3::Constant(1e300);
+    valid = verified();
+  }
   if (!valid && options_.num_sampling_directions > 0 && !s.stopped_early) {
     s.best_norm = 1e300;
     s.best_origin = Initializer::kNone;

@@ -37,6 +37,11 @@ struct PolyDepthOptions {
   double convergence_tol = 1e-5;   // stop when |q| improves less than this
   double contact_tol = 1e-4;       // feature pairs closer than this are constraints
   double separation_margin = 1e-8; // answers are backed off by this to be strictly free
+  // An answer must stay free this much further along itself (fraction of
+  // size): a configuration inside a thinner pocket of free space (the probe
+  // wedged between two scene features) is not an escape; the solver moves on
+  // out of the pocket instead. 0 disables the check.
+  double pocket_thickness = 4e-6;
   int num_maximally_clear = 3;     // best support-plane starts tried on a cold query
   bool use_centroid = true;
   int num_random = 2;              // random-direction starts on a cold query
