@@ -81,6 +81,7 @@ struct PolyDepthSolver::Impl {
   CollisionWitness witness;   // a triangle pair that intersected lately
   ProximityCounters counters;
   std::vector<ContactConstraint> previous_constraints;  // at the previous answer
+  std::vector<ContactConstraint> unit_constraints;      // scratch of ClearingDirection
   double anchor_depth = 0.0;  // |q| the coherent answers are measured against (m)
   // Work budget (PolyDepthOptions::max_work / max_time_us) of this query.
   int64_t work_limit = 0;
@@ -150,6 +151,24 @@ struct PolyDepthSolver::Impl {
   }
 }
 
+  // The unit direction that moves the probe off every one of `cs` at once
+  // (the shortest x with n_i·x >= 1 for all, normalised), and in *clearance
+  // the least rate min_i n_i·d at which it does; zero vector and clearance
+  // <= 0 when no direction clears them all (the probe is wedged).
+  Vector3 ClearingDirection(const std::vector<ContactConstraint>& cs, double tol,
+                            double* clearance) {
+    unit_constraints.assign(cs.begin(), cs.end());
+    for (ContactConstraint& c : unit_constraints) c.c = 1.0;
+    const Vector3 x = MinNormPoint(unit_constraints, tol, &qp).q;
+    *clearance = 0.0;
+    if (!(x.norm() > 0.0) || !x.allFinite()) return Vector3::Zero();
+    const Vector3 d = x.normalized();
+    double least = 1e300;
+    for (const ContactConstraint& c : cs) least = std::min(least, c.n_S.dot(d));
+    *clearance = least;
+    return least > 0.0 ? d : Vector3::Zero();
+  }
+
   void Offer(const Vector3& q_S, Initializer origin) {
     const double n = q_S.norm();
     if (n < best_norm) {
@@ -168,6 +187,7 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
   impl_->rng.seed(options_.seed);
   impl_->constraints.reserve(1024);
   impl_->previous_constraints.reserve(1024);
+  impl_->unit_constraints.reserve(1024);
   impl_->starts.reserve(64);
   impl_->qp.unique.reserve(1024);
   impl_->qp.lambda.reserve(1024);
@@ -321,12 +341,23 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         s.previous_q_S + back + 16.0 * back_step * s.previous_n_S,
         s.previous_q_S + 16.0 * step * s.previous_n_S,
         s.previous_q_S + 64.0 * step * s.previous_n_S};
-    for (const Vector3& q0 : candidates) {
-      if (InCollision(pair, q0)) continue;
+    auto try_from = [&](const Vector3& q0) {
+      if (InCollision(pair, q0)) return false;
       bool touched = false;
       const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
       if (touched) s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
-      break;
+      return true;
+    };
+    bool started = std::any_of(candidates.begin(), candidates.end(), try_from);
+    // A feature leaning over the previous answer's direction blocks those
+    // steps: step off along the direction that clears all its feature pairs.
+    double clearance = 0.0;
+    const Vector3 d = started ? Vector3::Zero()
+                              : s.ClearingDirection(s.previous_constraints,
+                                                    options_.convergence_tol, &clearance);
+    for (double k = 1.0; !started && clearance > 0.0 && k <= 64.0; k *= 4.0) {
+      started = try_from(s.previous_q_S + (k * step / clearance) * d) ||
+                try_from(s.previous_q_S + back + (k * back_step / clearance) * d);
     }
   }
 
@@ -436,42 +467,44 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   bool valid = verified();
   // 3a. Out of thin pockets: an answer that collides again a pocket's
   // thickness further along itself sits in a sliver of free space (the probe
-  // wedged against a feature that leans over it); the next frame's step-off
-  // along it lands in that feature and restarts cold. The answer's own
-  // feature pairs flag it (one that the step would push through), a
-  // collision test confirms, and the answer moves out to where the ray
-  // through it last leaves the scene, iterating on from there.
+  // against a feature that leans over the answer's direction); the next
+  // frame's step-off along it lands in that feature and restarts cold. The
+  // answer's own feature pairs flag it, a collision test confirms, and the
+  // answer moves off all its feature pairs at once (along the direction that
+  // clears them all) just far enough to be free beyond: a few pocket
+  // thicknesses deeper, not a different answer.
   const double thickness = options_.pocket_thickness * size;
-  Vector3 exit_q = Vector3::Zero();  // the shortest ray exit found (free beyond)
-  double exit_norm = 1e300;
-  for (int round = 0; valid && thickness > 0.0 && s.best_norm > 0.0; ++round) {
-    const Vector3 n = s.best_q_S / s.best_norm;
+  if (valid && thickness > 0.0 && s.best_norm > 0.0) {
     if (s.constraints_q_S != s.best_q_S) {
       CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
       s.constraints_q_S = s.best_q_S;
     }
-    const bool suspect = std::any_of(s.constraints.begin(), s.constraints.end(), [&](const ContactConstraint& c) {
-      const double along = c.n_S.dot(n);
-      return along < 0.0 && c.n_S.dot(s.best_q_S) - c.c + thickness * along < 0.0;
-    });
-    if (!suspect || !InCollision(pair, s.best_q_S + thickness * n)) break;
-    ++result.pocket_escapes;
-    const Initializer origin = s.best_origin;
-    if (round == 2) {
-      // Iterating from the exits led back into pockets: keep the exit.
-      if (exit_norm < 1e300) s.best_q_S = exit_q, s.best_norm = exit_norm;
-      break;
+    const Vector3 n = s.best_q_S / s.best_norm;
+    const bool suspect =
+        std::any_of(s.constraints.begin(), s.constraints.end(), [&](const ContactConstraint& c) {
+          const double along = c.n_S.dot(n);
+          return along < 0.0 && c.n_S.dot(s.best_q_S) - c.c + thickness * along < 0.0;
+        });
+    if (suspect && InCollision(pair, s.best_q_S + thickness * n)) {
+      ++result.pocket_escapes;
+      double clearance = 0.0;
+      const Vector3 d = s.ClearingDirection(s.constraints, options_.convergence_tol, &clearance);
+      for (double t = 2.0 * thickness / std::max(clearance, 1e-3); clearance > 0.0 && t < 16.0 * contact_distance;
+           t *= 4.0) {
+        Vector3 q = s.best_q_S + t * d;
+        if (InCollision(pair, q) || InCollision(pair, q + thickness * q.normalized())) continue;
+        // Back in along the new direction to where the probe touches, so
+        // the answer is again exactly where it leaves along itself.
+        bool touched = false;
+        const Vector3 e = OutProject(pair, q, Vector3::Zero(), margin, &touched);
+        if (touched && !InCollision(pair, e + thickness * e.normalized())) q = e;
+        s.best_q_S = q;
+        s.best_norm = q.norm();
+        verified_q_S = q;
+        s.constraints_q_S = Vector3::Constant(1e300);
+        break;
+      }
     }
-    bool touched = false;
-    const Vector3 q_exit =
-        OutProject(pair, SupportPlaneTranslation(pair, n), s.best_q_S, margin, &touched);
-    if (!touched) break;
-    if (q_exit.norm() < exit_norm) exit_q = q_exit, exit_norm = q_exit.norm();
-    s.best_norm = 1e300;
-    s.best_origin = Initializer::kNone;
-    s.Iterate(pair, options_, size, q_exit, origin);
-    verified_q_S = Vector3::Constant(1e300);
-    valid = verified();
   }
   if (!valid && options_.num_sampling_directions > 0 && !s.stopped_early) {
     s.best_norm = 1e300;

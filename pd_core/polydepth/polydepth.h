@@ -41,7 +41,7 @@ struct PolyDepthOptions {
   // size): a configuration inside a thinner pocket of free space (the probe
   // wedged between two scene features) is not an escape; the solver moves on
   // out of the pocket instead. 0 disables the check.
-  double pocket_thickness = 4e-6;
+  double pocket_thickness = 2e-6;
   int num_maximally_clear = 3;     // best support-plane starts tried on a cold query
   bool use_centroid = true;
   int num_random = 2;              // random-direction starts on a cold query

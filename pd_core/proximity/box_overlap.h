@@ -24,6 +24,28 @@ inline ProbeBoxInS ProbeBox(const BvhNode& node, const RelativePose& X_SP,
   return {X_SP.R_SP * node.R_MB, X_SP * node.center_M + offset_S, &node.half_B};
 }
 
+// ProbeBox of the node last asked for, kept for the next call: a descent
+// that splits the scene side tests one probe node against both children.
+// The probe's pose and translation are fixed for the memo's lifetime.
+class ProbeBoxMemo {
+ public:
+  ProbeBoxMemo(const RelativePose& X_SP, const Vector3& offset_S)
+      : X_SP_(X_SP), offset_S_(offset_S) {}
+  const ProbeBoxInS& operator()(const BvhNode& node) {
+    if (&node != node_) {
+      box_ = ProbeBox(node, X_SP_, offset_S_);
+      node_ = &node;
+    }
+    return box_;
+  }
+
+ private:
+  const RelativePose& X_SP_;
+  const Vector3 offset_S_;
+  const BvhNode* node_ = nullptr;
+  ProbeBoxInS box_;
+};
+
 namespace internal {
 
 // Box A relative to the scene box b: R = R_BA, absR = |R_BA| + eps, t = p_BA.
@@ -63,12 +85,16 @@ inline double BoxGapLowerBound(const ProbeBoxInS& a, const BvhNode& b,
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double len = std::sqrt(std::max(0.0, 1.0 - p.R(i, j) * p.R(i, j)));
-      if (len < 1e-6) continue;  // parallel axes: the face axes decide
+      const double len2 = std::max(0.0, 1.0 - p.R(i, j) * p.R(i, j));
+      if (len2 < 1e-12) continue;  // parallel axes: the face axes decide
       const double proj = std::abs(p.t[i2] * p.R(i1, j) - p.t[i1] * p.R(i2, j));
       const double r = p.hb[i1] * p.absR(i2, j) + p.hb[i2] * p.absR(i1, j) +
                        p.ha[j1] * p.absR(i, j2) + p.ha[j2] * p.absR(i, j1);
-      gap = std::max(gap, (proj - r) / len);
+      // The axis gives (proj - r) / len with len = sqrt(len2) <= 1: skip the
+      // root where that cannot beat the bound so far (the common case).
+      const double d = proj - r;
+      if (d <= 0.0 ? d <= gap : (gap > 0.0 && d * d <= gap * gap * len2)) continue;
+      gap = std::max(gap, d / std::sqrt(len2));
       if (gap > enough) return gap;
     }
   }

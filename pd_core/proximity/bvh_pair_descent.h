@@ -7,7 +7,8 @@
 //   alive(key) -> bool         is a popped pair still worth descending (CCD:
 //                              its earliest contact is before the best so far);
 //   on_leaf_pair(ip, is) -> bool   a surviving pair of leaves (node indices);
-//                              false stops the descent.
+//                              false stops the descent. It may take the
+//                              pair's key as a third argument.
 // Depth-first on an explicit stack: each step pops one pair and pushes at
 // most two, descending one side, so the stack never holds more than
 // depth_P + depth_S + 1 entries. A fixed array serves every BVH the builder
@@ -15,6 +16,7 @@
 // loaded) get a heap stack of the right size instead of an overflow.
 #include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "pd_core/proximity/bvh.h"
@@ -49,7 +51,12 @@ void DescendWithStack(Stack& stack, const Bvh& bvh_P, const Bvh& bvh_S, NodeTest
     const BvhNode& a = nodes_P[e.ip];
     const BvhNode& b = nodes_S[e.is];
     if (a.is_leaf() && b.is_leaf()) {
-      if (!on_leaf_pair(e.ip, e.is)) break;
+      bool go_on;
+      if constexpr (std::is_invocable_v<LeafFn&, int, int, double>)
+        go_on = on_leaf_pair(e.ip, e.is, e.key);
+      else
+        go_on = on_leaf_pair(e.ip, e.is);
+      if (!go_on) break;
       continue;
     }
     const bool split_P = b.is_leaf() || (!a.is_leaf() && NodeSize2(a) >= NodeSize2(b));

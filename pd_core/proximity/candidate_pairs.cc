@@ -17,17 +17,16 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
   probe_ = &pair.P;
   scene_ = &pair.S;
   valid_ = true;
+  ProbeBoxMemo probe_box(pair.X_SP, q_center_S);
   DescendBvhPair(
       pair.P.bvh(), pair.S.bvh(),
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        *key = BoxGap(ProbeBox(a, pair.X_SP, q_center_S), b, radius);
+        *key = BoxGap(probe_box(a), b, radius);
         return *key <= radius;
       },
       [](double) { return true; },
-      [&](int ip, int is) {
-        const BvhNode& a = pair.P.bvh().nodes()[ip];
-        const BvhNode& b = pair.S.bvh().nodes()[is];
-        entries_.push_back({ip, is, BoxGap(ProbeBox(a, pair.X_SP, q_center_S), b, radius)});
+      [&](int ip, int is, double gap) {
+        entries_.push_back({ip, is, gap});  // the node test's full bound (it passed)
         return true;
       },
       pair.counters);

@@ -47,11 +47,10 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, Collision
         }
   }
   bool hit = false;
+  ProbeBoxMemo probe_box(pair.X_SP, offset_S);
   ForEachLeafPairNear(
       pair, offset_S, offset_S, 0.0,
-      [&](const BvhNode& a, const BvhNode& b) {
-        return BoxesWithin(ProbeBox(a, pair.X_SP, offset_S), b, 0.0);
-      },
+      [&](const BvhNode& a, const BvhNode& b) { return BoxesWithin(probe_box(a), b, 0.0); },
       [&](int ip, int is) {
         return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
           hit = TrianglePairIntersects(pair, tp, ts, offset_S);

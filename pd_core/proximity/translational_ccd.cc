@@ -57,6 +57,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
     });
   };
   const CandidatePairs* list = pair.candidates;
+  ProbeBoxMemo probe_box(pair.X_SP, offset_S);
   const double covered = list ? list->CoveredFraction(pair, offset_S, sweep_S, 0.0) : -1.0;
   if (covered > 0.0) {
     // Every pair that can touch on [0, s] is in the list's prefix for the
@@ -76,7 +77,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
       if (pair.counters) pair.counters->box_tests += n;
       for (int k = 0; k < n; ++k) {
         const CandidatePairs::Entry& e = list->entries()[k];
-        if (SweptBoxContactInterval(ProbeBox(nodes_P[e.ip], pair.X_SP, offset_S), nodes_S[e.is],
+        if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is],
                                     sweep_S, s_best, &lo, &hi))
           leaf_contacts(e.ip, e.is);
       }
@@ -92,8 +93,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   DescendBvhPair(
       bvh_P, bvh_S,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        if (!SweptBoxContactInterval(ProbeBox(a, pair.X_SP, offset_S), b, sweep_S, s_best, &lo,
-                                     &hi))
+        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi))
           return false;
         *key = lo;
         return true;
