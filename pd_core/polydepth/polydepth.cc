@@ -36,6 +36,8 @@ namespace {
 // deeper than its anchor plus this fraction of the pair's size.
 constexpr double kReanchorGrowth = 1.5;
 constexpr double kReanchorFloor = 5e-3;
+// A list built while sliding is centred this fraction of its radius ahead.
+constexpr double kListLead = 0.6;
 
 // A collision-free configuration and where it came from.
 struct Start {
@@ -265,8 +267,15 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
                            : s.has_previous ? s.previous_q_S
                                             : Vector3(s.previous_X_SP.p_SP - pair.X_SP.p_SP);
     const double need = (have_prediction ? 0.0 : 2.0 * motion) + 6.0 * contact_distance;
-    if (!s.candidates.Covers(pair, center, center, need))
-      s.candidates.Build(pair, center, options_.candidate_radius * size + need);
+    if (!s.candidates.Covers(pair, center, center, need)) {
+      // Sliding: centre the new list ahead along the motion, where the
+      // coming queries will be, so it lasts longer than one centred here.
+      const Vector3 v = pair.X_SP.p_SP - s.previous_X_SP.p_SP;
+      const double lead =
+          have_prediction && v.norm() > 0.0 ? kListLead * options_.candidate_radius * size : 0.0;
+      const Vector3 build_center = lead > 0.0 ? Vector3(center + lead * v.normalized()) : center;
+      s.candidates.Build(pair, build_center, options_.candidate_radius * size + need);
+    }
   }
 
   result.in_collision = InCollision(pair, Vector3::Zero(), &s.witness);
