@@ -38,6 +38,9 @@ constexpr double kReanchorGrowth = 1.5;
 constexpr double kReanchorFloor = 5e-3;
 // A list built while sliding is centred this fraction of its radius ahead.
 constexpr double kListLead = 0.6;
+// No list is built for a query that would need it wider than this many
+// times its usual radius.
+constexpr double kListMaxNeed = 2.0;
 
 // A collision-free configuration and where it came from.
 struct Start {
@@ -267,7 +270,12 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
                            : s.has_previous ? s.previous_q_S
                                             : Vector3(s.previous_X_SP.p_SP - pair.X_SP.p_SP);
     const double need = (have_prediction ? 0.0 : 2.0 * motion) + 6.0 * contact_distance;
-    if (!s.candidates.Covers(pair, center, center, need)) {
+    if (need > kListMaxNeed * options_.candidate_radius * size) {
+      // A jump: a list wide enough to cover it would hold a large part of
+      // both meshes' leaf pairs (one such build took minutes on 52k x 75k
+      // triangles). The queries descend the hierarchies instead.
+      s.candidates.Invalidate();
+    } else if (!s.candidates.Covers(pair, center, center, need)) {
       // Sliding: centre the new list ahead along the motion, where the
       // coming queries will be, so it lasts longer than one centred here.
       const Vector3 v = pair.X_SP.p_SP - s.previous_X_SP.p_SP;

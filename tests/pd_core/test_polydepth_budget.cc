@@ -159,5 +159,29 @@ TEST(WarmPath, SlidingAtHapticRatesNeverRestartsCold) {
   EXPECT_EQ(cold, 0);
 }
 
+
+// A warm query after a jump of the probe (a new contact far from the last
+// one) must not pay for a leaf-pair list wide enough to cover the jump: such
+// a list holds a large part of both meshes' leaf pairs (one took minutes on
+// 52k x 75k triangles in the benchmark's shallow scenario). It costs about
+// what a cold query at the same pose costs.
+TEST(WarmPath, AJumpCostsNoMoreThanAColdQuery) {
+  const Model probe = CollisionModel::Build(MakeIcosphere(0.05, 4));
+  const Model scene = CollisionModel::Build(MakeIcosphere(0.05, 4));
+  const Isometry3 X_WS = Pose(Vector3::Zero());
+  const Isometry3 before = Pose(Vector3(0.095, 0.0, 0.0));
+  const Isometry3 after = Pose(Vector3(0.0, 0.094, 0.03));  // 13 cm away
+  PolyDepthSolver warm(probe, scene);
+  ASSERT_TRUE(warm.Solve(before, X_WS, /*coherent=*/true).valid);
+  const PenetrationResult jumped = warm.Solve(after, X_WS, /*coherent=*/true);
+  PolyDepthSolver cold(probe, scene);
+  const PenetrationResult fresh = cold.Solve(after, X_WS, /*coherent=*/false);
+  ASSERT_TRUE(jumped.valid);
+  ASSERT_TRUE(fresh.valid);
+  EXPECT_NEAR(jumped.depth, fresh.depth, 0.01 * fresh.depth);
+  EXPECT_LE(jumped.box_tests, 2 * fresh.box_tests)
+      << "warm " << jumped.box_tests << " box tests, cold " << fresh.box_tests;
+}
+
 }  // namespace
 }  // namespace pd
