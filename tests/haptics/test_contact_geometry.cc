@@ -22,8 +22,8 @@
 namespace haptics {
 namespace {
 
-const std::string kScene = test::ConfigDir() + "/../bench/scenes/knot_tool_elephant_bunny_164k.yaml";
-const std::string kMeshDir = test::ConfigDir() + "/../build/meshes";
+const std::string kScene = test::BenchSceneDir() + "/knot_tool_elephant_bunny_164k.yaml";
+const std::string kMeshDir = test::MeshDir();
 
 int64_t Work(const pd::PenetrationResult& r) { return r.box_tests + r.triangle_tests; }
 
