@@ -49,6 +49,21 @@ bool TryPinToCpu(int cpu, std::string* why) {
   return true;
 }
 
+ScopedCpuPin::ScopedCpuPin(int cpu) {
+  static_assert(sizeof(cpu_set_t) <= sizeof(saved_));
+  cpu_set_t* saved = reinterpret_cast<cpu_set_t*>(saved_);
+  const int err = pthread_getaffinity_np(pthread_self(), sizeof(cpu_set_t), saved);
+  if (err != 0) {
+    why_ = std::string("pthread_getaffinity_np: ") + std::strerror(err);
+    return;
+  }
+  ok_ = TryPinToCpu(cpu, &why_);
+}
+
+ScopedCpuPin::~ScopedCpuPin() {
+  if (ok_) pthread_setaffinity_np(pthread_self(), sizeof(cpu_set_t), reinterpret_cast<cpu_set_t*>(saved_));
+}
+
 bool TryLockMemory(std::string* why) {
   if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
     *why = std::string("mlockall: ") + std::strerror(errno);

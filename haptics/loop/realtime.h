@@ -12,6 +12,23 @@ bool TrySetFifoScheduling(int priority, std::string* why);
 bool TrySetNormalScheduling(std::string* why);
 // Pins the calling thread to one CPU.
 bool TryPinToCpu(int cpu, std::string* why);
+// Restricts the calling thread to one CPU for the object's lifetime (threads
+// it creates meanwhile inherit that CPU), then restores its previous set.
+// ok() false (why() says why) if the CPU could not be set; nothing to restore.
+class ScopedCpuPin {
+ public:
+  explicit ScopedCpuPin(int cpu);
+  ~ScopedCpuPin();
+  ScopedCpuPin(const ScopedCpuPin&) = delete;
+  ScopedCpuPin& operator=(const ScopedCpuPin&) = delete;
+  bool ok() const { return ok_; }
+  const std::string& why() const { return why_; }
+
+ private:
+  bool ok_ = false;
+  std::string why_;
+  alignas(8) unsigned char saved_[128];  // the previous cpu_set_t
+};
 // Locks current and future pages in RAM (no page faults in the loop).
 bool TryLockMemory(std::string* why);
 // Stack touched by PrefaultThread by default (the loops use a few KiB).

@@ -11,6 +11,7 @@
 #include <sys/resource.h>
 
 #include <cstdlib>
+#include <thread>
 #include <cstring>
 
 namespace haptics {
@@ -71,6 +72,31 @@ TEST(Realtime, PrefaultedThreadTakesNoPageFaultsInItsLoop) {
   // The control run faults in (nearly) every page it touches: the measure works.
   EXPECT_GE(cold, static_cast<long>(kUse / 4096) - 4) << "prefaulted " << prefaulted;
   EXPECT_LE(prefaulted, 1) << "without the prefault " << cold;
+}
+
+// ScopedCpuPin: a thread created inside the scope runs on the pinned CPU only
+// (how the server keeps the LCM threads on the servo's CPU); the creating
+// thread gets its own CPUs back after the scope.
+TEST(Realtime, ScopedCpuPinPinsThreadsCreatedInsideAndRestoresTheCreator) {
+  cpu_set_t before;
+  ASSERT_EQ(pthread_getaffinity_np(pthread_self(), sizeof(before), &before), 0);
+  int cpu = -1;
+  for (int c = 0; c < CPU_SETSIZE; ++c)
+    if (CPU_ISSET(c, &before)) cpu = c;  // the last allowed CPU
+  ASSERT_GE(cpu, 0);
+  cpu_set_t child{};
+  {
+    ScopedCpuPin pin(cpu);
+    ASSERT_TRUE(pin.ok()) << pin.why();
+    std::thread t([&child] { pthread_getaffinity_np(pthread_self(), sizeof(child), &child); });
+    t.join();
+  }
+  EXPECT_EQ(CPU_COUNT(&child), 1);
+  EXPECT_TRUE(CPU_ISSET(cpu, &child));
+  cpu_set_t after;
+  ASSERT_EQ(pthread_getaffinity_np(pthread_self(), sizeof(after), &after), 0);
+  EXPECT_TRUE(CPU_EQUAL(&before, &after));
+  EXPECT_FALSE(ScopedCpuPin(CPU_SETSIZE + 5).ok());
 }
 
 }  // namespace
