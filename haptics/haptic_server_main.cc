@@ -39,6 +39,7 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -166,6 +167,27 @@ int Serve(const Options& opt, sigset_t* signals) {
     }
   }
 
+  // The pose's path from the socket to the tick stays on the servo's CPU:
+  // LCM's udpm read thread and the pose receive thread are created pinned to
+  // it (below the servo loop's priority, so they never delay a tick;
+  // servo.io_on_servo_cpu: false turns this off). A wake-up
+  // across CPUs costs ~10 us on a VM, and the path has two before the tick;
+  // the server's own wrenches, which its socket receives too, no longer wake
+  // a thread on the other CPU, where the geometry thread and the device's
+  // client run. Pinned until the receive thread has started.
+  const int io_cpu = config.servo.io_on_servo_cpu && config.servo.cpu >= 0 &&
+                             config.servo.cpu < haptics::NumCpus()
+                         ? config.servo.cpu
+                         : -1;
+  std::optional<haptics::ScopedCpuPin> io_pin;
+  if (io_cpu >= 0) {
+    io_pin.emplace(io_cpu);
+    if (io_pin->ok()) {
+      spdlog::info("LCM threads: pinned to CPU {} (the servo loop's)", io_cpu);
+    } else {
+      spdlog::warn("LCM threads: not pinned ({})", io_pin->why());
+    }
+  }
   // Separate LCM instances: the loop's publishes never share a transmit lock
   // with the status publishes or the receive thread.
   lcm::LCM rx(config.lcm.url);
@@ -244,6 +266,7 @@ int Serve(const Options& opt, sigset_t* signals) {
   spdlog::info("LCM {}: poses on {}, wrenches on {}, status on {}", config.lcm.url,
                config.lcm.pose_channel, config.lcm.wrench_channel, config.lcm.status_channel);
   receiver.StartThread();
+  io_pin.reset();  // the main thread (status, signals) runs anywhere again
   loop.Start();
 
   const int64_t start_us = haptics::MonotonicMicros();

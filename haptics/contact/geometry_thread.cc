@@ -74,6 +74,7 @@ bool GeometryThread::WaitFinished(double timeout_s) const {
 
 void GeometryThread::Run() {
   NameThisThread("geometry");
+  PrefaultThread();
   std::string why;
   // The server's threads inherit SCHED_FIFO from main; a query of hundreds
   // of milliseconds at a real-time priority would starve the rest of its CPU.

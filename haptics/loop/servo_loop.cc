@@ -66,6 +66,7 @@ void ServoLoop::Stop() {
 
 void ServoLoop::SetUpThread() {
   NameThisThread("servo_loop");
+  PrefaultThread();
   std::string why;
   if (options_.realtime_priority > 0) {
     realtime_ = TrySetFifoScheduling(options_.realtime_priority, &why);

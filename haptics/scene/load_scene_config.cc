@@ -184,6 +184,7 @@ ServoConfig ReadServo(const YamlMap& m) {
   if (m.Has("tick_trigger"))
     s.pose_triggered = m.Choice("tick_trigger", {"pose", "fixed_rate"}) == "pose";
   s.pose_window_us = m.NumberOr("pose_window_us", 400.0, Range::Closed(0.0, 0.5e6 / s.rate_hz, "us"));
+  if (m.Has("io_on_servo_cpu")) s.io_on_servo_cpu = m.Choice("io_on_servo_cpu", {"true", "false"}) == "true";
   m.WarnUnknownKeys();
   return s;
 }

@@ -136,6 +136,9 @@ struct ServoConfig {
   // deadline only.
   bool pose_triggered = true;
   double pose_window_us = 400.0;
+  // LCM's read thread and the pose receive thread run on the servo's CPU
+  // (with cpu >= 0): no wake-up across CPUs between a pose and its tick.
+  bool io_on_servo_cpu = true;
 };
 
 struct LcmConfig {

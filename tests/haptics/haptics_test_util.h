@@ -18,6 +18,9 @@
 namespace haptics::test {
 
 inline std::string ConfigDir() { return HAPTICS_CONFIG_DIR; }
+// The loop benchmark's scenes, and the meshes they name (scripts/fetch_meshes.sh).
+inline std::string BenchSceneDir() { return ConfigDir() + "/../bench/scenes"; }
+inline std::string MeshDir() { return ConfigDir() + "/../build/meshes"; }
 
 // A 2 cm box tool over a 10 x 10 x 2 cm table whose top face is z = 0.
 inline SceneConfig BoxOnBoxConfig() {

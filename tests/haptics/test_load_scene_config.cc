@@ -175,6 +175,11 @@ TEST_F(ConfigTest, GeometryThreadHoldAgeingAndTickTrigger) {
   EXPECT_FALSE(c.servo.pose_triggered);
   ExpectError(Write(kScene, "  rate_hz: 1000.0\n", "  rate_hz: 1000.0\n  tick_trigger: sometimes\n"),
               "servo.tick_trigger", {"pose, fixed_rate"});
+  EXPECT_TRUE(LoadSceneConfig(Write(kScene)).servo.io_on_servo_cpu);
+  c = LoadSceneConfig(Write(kScene, "  rate_hz: 1000.0\n", "  rate_hz: 1000.0\n  io_on_servo_cpu: false\n"));
+  EXPECT_FALSE(c.servo.io_on_servo_cpu);
+  ExpectError(Write(kScene, "  rate_hz: 1000.0\n", "  rate_hz: 1000.0\n  io_on_servo_cpu: maybe\n"),
+              "servo.io_on_servo_cpu", {"true, false"});
 }
 
 TEST_F(ConfigTest, CouplingAboveWhatTheDeviceRendersIsRejected) {
