@@ -6,8 +6,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "pd_core/geometry/relative_pose.h"
-
 namespace haptics {
 namespace {
 
@@ -37,12 +35,6 @@ ContactGeometry::ContactGeometry(std::shared_ptr<const pd::Geometry> tool, const
   candidates_now_.reserve(objects_.size());
   candidates_prev_.reserve(objects_.size());
   candidate_call_.assign(objects_.size(), -1);
-  X_WG_solved_.assign(objects_.size(), Isometry3::Identity());
-  warm_.assign(objects_.size(), 0);
-  for (const SceneObject& object : objects_) {
-    const double size = tool_->radius() + (object.geometry->bounded() ? object.geometry->radius() : 0.0);
-    warm_motion_limit_.push_back(kWarmStartMaxMotion * size);
-  }
   const double same_point_tol = 1e-9 * tool_->radius();
   same_point_tol2_ = same_point_tol * same_point_tol;
   const size_t np = tool_->surface_points().size();
@@ -59,7 +51,6 @@ bool ContactGeometry::any_polydepth() const {
 
 void ContactGeometry::ResetWarmStarts() {
   for (auto& solver : solvers_) solver->ResetWarmStart();
-  std::fill(warm_.begin(), warm_.end(), 0);
   have_previous_ = false;
 }
 
@@ -84,7 +75,6 @@ void ContactGeometry::Query(const Isometry3& X_WT, int64_t request_tick, Contact
     if (candidate_call_[i] == call_) continue;
     // Out of reach again: the next contact starts cold.
     solvers_[i]->ResetWarmStart();
-    warm_[i] = 0;
     results_[i] = pd::PenetrationResult{};
   }
   out->num_candidates = static_cast<int>(candidates_now_.size());
@@ -93,19 +83,6 @@ void ContactGeometry::Query(const Isometry3& X_WT, int64_t request_tick, Contact
   for (int i : candidates_now_) {
     const SceneObject& object = objects_[i];
     ++query_count_;
-    // A pair with a warm start drops it after a long motion.
-    if (warm_[i]) {
-      const Isometry3& X_prev = X_WG_solved_[i];
-      const Vector3 c_G = tool_->center();
-      const double motion = (X_WG * c_G - X_prev * c_G).norm() +
-                            pd::RotationAngleBetween(X_prev.linear(), X_WG.linear()) * tool_->radius();
-      if (motion > warm_motion_limit_[i]) {
-        solvers_[i]->ResetWarmStart();
-        ++far_motion_restarts_;
-      }
-    }
-    X_WG_solved_[i] = X_WG;
-    warm_[i] = 1;
     results_[i] = solvers_[i]->Solve(X_WG, object.X_WS, /*coherent=*/true);
     const pd::PenetrationResult& r = results_[i];
     PairContactModel& m = out->pairs[out->num_pairs++];

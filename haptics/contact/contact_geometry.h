@@ -10,10 +10,11 @@
 // model's evaluation at the tool's current state.
 //
 // Culled objects cost nothing; an object leaving reach has its warm start
-// dropped, and so has a pair whose tool moved more than kWarmStartMaxMotion
-// of the pair's size since its last query (a warm start from that far costs
-// more than a cold query: see kWarmStartMaxMotion). Allocation-free once the solvers' scratch has grown. Not thread-
-// safe: one thread queries at a time.
+// dropped. A pair keeps its warm start over a jump of the tool (an answer
+// that took long): it keeps the side of the contact, and PolyDepth's warm
+// query after a jump costs about what a cold one does. Allocation-free once
+// the solvers' scratch has grown. Not thread-safe: one thread queries at a
+// time.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -45,17 +46,6 @@ struct ContactSnapshot {
 
 class ContactGeometry {
  public:
-  // A pair's warm start is dropped (the query starts cold) when any tool
-  // point moved more than this fraction of the pair's size (sum of bounding
-  // radii) since the pair's previous query. PolyDepth's warm start keeps the
-  // leaf pairs within the motion of its previous answer, so its cost grows
-  // with the motion, much faster than a cold query's: knot 6.4k on elephant
-  // 89k (size 8.5 cm) in contact, 2 ms budget, same poses: 0.1-0.6 ms warm vs
-  // 2.4-7 ms cold up to 0.4 mm of motion, both 3-8 ms at 0.7 mm, 20-37 ms warm
-  // vs 2.5-5 ms cold at 2 mm, 0.4-0.7 s vs 3-7 ms at 5 mm. On the geometry
-  // thread a slow answer lets the tool move further before the next query,
-  // which was slower again: the model went seconds stale.
-  static constexpr double kWarmStartMaxMotion = 6e-3;
 
   // The tool geometry in its frame G, placed in the tool frame T by X_TG.
   ContactGeometry(std::shared_ptr<const pd::Geometry> tool, const Isometry3& X_TG,
@@ -79,8 +69,6 @@ class ContactGeometry {
   bool any_polydepth() const;
   int64_t query_count() const { return query_count_; }   // PD queries (object x call)
   int64_t invalid_count() const { return invalid_count_; }  // of those, not verified
-  // Of those, started cold because the tool moved too far (kWarmStartMaxMotion).
-  int64_t far_motion_restarts() const { return far_motion_restarts_; }
   const ContactConfig& params() const { return params_; }
 
  private:
@@ -104,9 +92,6 @@ class ContactGeometry {
   std::vector<int64_t> candidate_call_;  // per object: last call it was a candidate
   // Per object: tool geometry pose at the pair's previous query (valid while
   // it stays a candidate) and the motion beyond which it restarts cold (m).
-  std::vector<Isometry3> X_WG_solved_;
-  std::vector<double> warm_motion_limit_;
-  std::vector<char> warm_;  // per object: its solver holds a warm start
   int64_t call_ = 0;
   // Scratch, sized at construction.
   Isometry3 X_WG_ = Isometry3::Identity();          // tool geometry pose this call
@@ -116,7 +101,6 @@ class ContactGeometry {
   double same_point_tol2_ = 0.0;  // (m²) a region point this close to a pressure point is it
   int64_t query_count_ = 0;
   int64_t invalid_count_ = 0;
-  int64_t far_motion_restarts_ = 0;
 };
 
 }  // namespace haptics

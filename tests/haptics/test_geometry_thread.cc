@@ -160,9 +160,9 @@ TEST(GeometryThread, QueriesOf20msStillGetAWrenchEveryTick) {
 // milliseconds: CGAL knot1 (6.4k triangles, 5 cm) on the refined elephant
 // (89k triangles; bench/scenes/knot_tool_elephant_bunny_164k.yaml without the
 // bunny), PolyDepth with no time budget. The device jumps 7 mm along the
-// elephant's back every 150 ms, so each jump starts a pair cold
-// (ContactGeometry::kWarmStartMaxMotion). The test measures the queries'
-// times (worker, polled) and asserts they took tens of ms.
+// elephant's back every 150 ms (a new contact far from the last). The test
+// measures the queries' times (worker, polled) and asserts they took tens of
+// ms.
 TEST(GeometryThread, RealMeshColdQueriesOfTensOfMsStillGetAWrenchEveryTick) {
   PD_REQUIRE_FILE(test::MeshDir() + "/refined_elephant.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(test::MeshDir() + "/knot1.off", "run scripts/fetch_meshes.sh");
