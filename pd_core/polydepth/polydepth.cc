@@ -385,6 +385,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       st.contact_norm = 1e300;
       if (cross_checking && s.BudgetSpent()) continue;
       bool touched = false;
+      ++result.starts;
       st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched);
       st.contact_norm = touched ? st.contact_q_S.norm() : 1e300;
     }
