@@ -37,11 +37,24 @@ struct PolyDepthOptions {
   double convergence_tol = 1e-5;   // stop when |q| improves less than this
   double contact_tol = 1e-4;       // feature pairs closer than this are constraints
   double separation_margin = 1e-8; // answers are backed off by this to be strictly free
-  int num_maximally_clear = 3;     // best support-plane starts tried on a cold query
+  // Support-plane (maximally clear) starts out-projected on a cold query;
+  // their landing |q| ranks them. A cross-check of a warm answer uses at
+  // most kCrossCheckClear of them (polydepth.cc).
+  int num_maximally_clear = 8;
   bool use_centroid = true;
   int num_random = 2;              // random-direction starts on a cold query
   int num_iterated_starts = 3;     // cold starts refined, closest contact first
   int num_sampling_directions = 64;  // fallback directional search
+  // Cold answers back off from the contact by at least this (fraction of
+  // size), so they stay free 2e-6 of size further along the answer.
+  double cold_separation_margin = 4e-6;
+  // After the starts, a cold query probes this many directions from the
+  // inside for free configurations shallower than its best answer
+  // (cold_starts.h, InnerProbeStarts; 0 = off).
+  int cold_inner_probes = 48;
+  // A cold start after the first stops once its extrapolated limit cannot
+  // beat the best verified answer (cold_starts.h, StartAbandon).
+  bool cold_abandon = true;
   bool warm_start = true;          // honour `coherent` in Solve
   // Warm-started queries keep a list of the leaf pairs within this distance
   // of the previous contact and reuse it while the probe stays inside that
