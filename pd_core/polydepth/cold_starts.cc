@@ -19,7 +19,7 @@ bool StartAbandon::Update(double norm) {
   if (last_drop_ > 0.0) {
     // Geometric tail: the remaining descent is drop * r / (1 - r); r is
     // taken generously (at least 0.5, below 0.95) so slow starts continue.
-    const double r = std::clamp(drop / last_drop_, 0.5, 0.95);
+    const double r = std::clamp(drop / last_drop_, 0.7, 0.95);
     const double limit = norm - drop * r / (1.0 - r);
     stop = limit > best_ * (1.0 + slack_);
   }

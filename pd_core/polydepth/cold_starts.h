@@ -15,7 +15,7 @@ namespace pd {
 // (fraction) keeps starts that are close.
 class StartAbandon {
  public:
-  explicit StartAbandon(double best_norm, double slack = 0.02)
+  explicit StartAbandon(double best_norm, double slack = 0.1)
       : best_(best_norm), slack_(slack) {}
   // Call with |q| after each step (first call: the out-projected contact).
   // Returns true when the start should stop.

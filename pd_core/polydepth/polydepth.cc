@@ -37,8 +37,8 @@ namespace {
 // deeper than its anchor plus this fraction of the pair's size.
 constexpr double kReanchorGrowth = 1.5;
 constexpr double kReanchorFloor = 5e-3;
-// A cross-check out-projects at most this many support-plane starts (it
-// runs inside a warm query's budget).
+// A cross-check out-projects at most this many support-plane starts and
+// iterates at most this many starts (it runs inside a warm query's budget).
 constexpr int kCrossCheckClear = 3;
 
 // A collision-free configuration and where it came from.
@@ -378,12 +378,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     if (cold) s.rng.seed(options_.seed);
     const int num_clear =
         cold ? options_.num_maximally_clear : std::min(options_.num_maximally_clear, kCrossCheckClear);
-    const int num_iterated = options_.num_iterated_starts;
-    // Cold answers back off by at least cold_separation_margin, so they stay
-    // free a little further out (a touching answer is fragile).
-    PolyDepthOptions opt = options_;
-    if (cold) opt.separation_margin = std::max(opt.separation_margin, opt.cold_separation_margin);
-    const double start_margin = opt.separation_margin * size;
+    const int num_iterated =
+        cold ? options_.num_iterated_starts : std::min(options_.num_iterated_starts, kCrossCheckClear);
+    const PolyDepthOptions& opt = options_;
+    const double start_margin = margin;
     ComputeSupportPlaneStarts(pair, &s.support_starts);
     // Maximally clear: the best support-plane separations of the two models.
     for (int i = 0; i < std::min<int>(num_clear, s.support_starts.size()); ++i)
@@ -434,6 +432,22 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         StartAbandon abandon(s.best_norm);
         s.Iterate(pair, opt, size, q_c, Initializer::kMaximallyClear,
                   options_.cold_abandon ? &abandon : nullptr);
+      }
+    }
+    // A cold answer must stay free cold_free_beyond of size further along
+    // itself; one resting on a grazing contact is moved out to where it is.
+    if (cold && options_.cold_free_beyond > 0.0 && s.best_origin != Initializer::kNone &&
+        s.best_norm > 0.0) {
+      const double eps = options_.cold_free_beyond * size / s.best_norm;
+      if (InCollision(pair, (1.0 + eps) * s.best_q_S)) {
+        for (double k : {2.0, 8.0, 32.0}) {
+          const Vector3 q = (1.0 + k * eps) * s.best_q_S;
+          if (!InCollision(pair, q) && !InCollision(pair, (1.0 + eps) * q)) {
+            s.best_q_S = q;
+            s.best_norm = q.norm();
+            break;
+          }
+        }
       }
     }
   };

@@ -168,7 +168,8 @@ TEST(ColdPolyDepth, RealPairIsScaleInvariant) {
       X.translation() *= scale;
       const PenetrationResult r = PolyDepthSolver(P, S).Solve(X, X_WS);
       ASSERT_TRUE(base.valid && r.valid) << "pose " << i << " scale " << scale;
-      EXPECT_NEAR(r.depth / scale, base.depth, 1e-6 * base.depth) << "pose " << i << " scale " << scale;
+      // Round-off through ~15 CCD iterations: 1e-5 relative.
+      EXPECT_NEAR(r.depth / scale, base.depth, 1e-5 * base.depth) << "pose " << i << " scale " << scale;
       EXPECT_GT(r.normal_W.dot(base.normal_W), 1.0 - 1e-9) << "pose " << i << " scale " << scale;
       EXPECT_EQ(r.iterations, base.iterations) << "pose " << i << " scale " << scale;
       EXPECT_EQ(r.starts, base.starts) << "pose " << i << " scale " << scale;
