@@ -18,6 +18,15 @@ std::vector<PairSpec> DefaultPairs() {
       {"camel_cow", "camel.off", "cow.off", false},
       {"dragon_dragon", "ChineseDragon-10kv.off", "ChineseDragon-10kv.off", false},
       {"armadillo_bunny", "armadillo.off", "bunny00.off", false},
+      // Cold queries (issue 13): more closed real meshes of 2k-10k triangles,
+      // random scenario only.
+      {"elephant_cow", "elephant.off", "cow.off", false, true},
+      {"dino_femur", "dino.off", "femur.off", false, true},
+      {"homer_triceratops", "homer.off", "triceratops.off", false, true},
+      {"elk_hand", "elk.off", "hand.off", false, true},
+      {"anchor_knot", "anchor_dense.off", "knot.off", false, true},
+      {"bones_coupling", "bones.off", "couplingdown.off", false, true},
+      {"rotor_blobby", "rotor_small.off", "blobby.off", false, true},
   };
 }
 

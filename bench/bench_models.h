@@ -29,11 +29,13 @@ struct PairSpec {
   std::string name;
   std::string probe, scene;  // file names in the mesh dir, or "procedural:..." names
   bool in_quick = false;     // part of the --quick run
+  bool random_only = false;  // only the random (cold) scenario
 };
 
 struct BenchPair {
   std::string name;
   std::shared_ptr<const ModelInfo> probe, scene;
+  bool random_only = false;  // PairSpec::random_only
 };
 
 // Pairs of increasing size.

@@ -2,6 +2,7 @@
 // reference PD and FCL baselines on the same cases. Writes
 // pd_speed_error.md, CSVs and PNG plots into --out. See bench/README.md.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -70,17 +71,19 @@ std::string FindMeshDir() {
 }
 
 void PrintHeadlines(const BenchRun& run) {
-  std::printf("\n%-16s %-8s %5s %10s %10s %10s %7s %8s %9s %9s %9s\n", "pair", "scenario",
-              "cases", "median_us", "p99_us", "iters", "valid", "ref_n", "mean|err|",
-              "p95|err|", "signed");
+  std::printf("\n%-18s %-8s %5s %10s %10s %10s %6s %6s %7s %6s %6s %9s %9s %9s %9s\n", "pair",
+              "scenario", "cases", "median_us", "p95_us", "p99_us", "iters", "starts", "valid",
+              "!free+", "ref_n", "mean|err|", "p95|err|", "max|err|", "signed");
   for (const PairResult& p : run.pairs)
     for (const ScenarioResult& s : p.scenarios) {
       const ScenarioSummary m = Summarize(s);
-      std::printf("%-16s %-8s %5d %10.1f %10.1f %10.2f %6.1f%% %8d %8.2f%% %8.2f%% %8.2f%%\n",
+      std::printf("%-18s %-8s %5d %10.1f %10.1f %10.1f %6.2f %6.2f %6.1f%% %6d %6d %8.2f%% %8.2f%% "
+                  "%8.2f%% %8.2f%%\n",
                   p.pair.name.c_str(), ScenarioName(s.scenario), m.n, m.time_us.median,
-                  m.time_us.p99, m.mean_iterations,
-                  100 * (m.n > 0 ? (m.n - m.n_invalid) / double(m.n) : 0.0), m.n_ref,
-                  100 * m.abs_error.mean, 100 * m.abs_error.p95, 100 * m.signed_mean_error);
+                  m.time_us.p95, m.time_us.p99, m.mean_iterations, m.mean_starts,
+                  100 * (m.n > 0 ? (m.n - m.n_invalid) / double(m.n) : 0.0), m.n_not_free_beyond,
+                  m.n_ref, 100 * m.abs_error.mean, 100 * m.abs_error.p95, 100 * m.abs_error.max,
+                  100 * m.signed_mean_error);
     }
 }
 
@@ -130,6 +133,19 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000));
   app.add_option("--ref-threads", ref_threads, "threads for the reference PD")
       ->capture_default_str()->check(CLI::Range(1, 64));
+  std::vector<std::string> scenarios;
+  app.add_option("--scenarios", scenarios,
+                 "run only these scenarios (random, path, shallow, haptic; default all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"random", "path", "shallow", "haptic"}));
+  bool no_sweep = false;
+  app.add_flag("--no-sweep", no_sweep, "skip the knob sweep");
+  int random_cases = 0, ref_random = -1;
+  app.add_option("--random-cases", random_cases, "random cases per pair (quick 16, full 100)")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--ref-random", ref_random,
+                 "reference PDs per pair in the random scenario (quick 3, full 24/16)")
+      ->check(CLI::Range(0, 100000));
   CLI11_PARSE(app, argc, argv);
 
   const auto t_start = std::chrono::steady_clock::now();
@@ -141,6 +157,17 @@ int main(int argc, char** argv) {
   if (haptic_ref >= 0) st.haptic_ref = haptic_ref;
   st.ref_threads = ref_threads;
   if (ref_directions > 0) st.ref_directions = ref_directions;
+  if (random_cases > 0) st.random_cases = random_cases;
+  if (ref_random >= 0) st.ref_random = st.ref_random_large = ref_random;
+  const auto wants = [&](const std::string& name) {
+    return scenarios.empty() || std::find(scenarios.begin(), scenarios.end(), name) != scenarios.end();
+  };
+  for (const std::string& name : scenarios)
+    if (name != "haptic") st.scenarios.push_back(name);
+  if (st.scenarios.empty() && !scenarios.empty() && !haptic_only) {
+    std::cerr << "bench_pd: --scenarios haptic alone: use --haptic-only\n";
+    haptic_only = true;
+  }
   st.mesh_dir = mesh_dir.empty() ? FindMeshDir() : mesh_dir;
   st.out_dir = out_dir;
   std::error_code ec;
@@ -155,7 +182,7 @@ int main(int argc, char** argv) {
   ModelCache cache(st.mesh_dir, quick ? 1 : 3);
   std::vector<HapticPairResult>& haptic = run.haptic;
   for (const HapticPairSpec& spec : DefaultHapticPairs()) {
-    if (quick && !spec.in_quick) continue;
+    if ((quick && !spec.in_quick) || !wants("haptic")) continue;
     std::string why;
     auto tool = cache.Get(spec.tool, &why, kHapticToolRadius);
     auto object = tool ? cache.Get(spec.object, &why, kHapticObjectRadius) : nullptr;
@@ -196,7 +223,7 @@ int main(int argc, char** argv) {
       run.skipped.push_back(spec.name + ": " + why);
       continue;
     }
-    pairs.push_back({spec.name, probe, scene});
+    pairs.push_back({spec.name, probe, scene, spec.random_only});
   }
   if (pairs.empty()) {
     std::cerr << "bench_pd: no pair to benchmark\n";
@@ -211,7 +238,7 @@ int main(int argc, char** argv) {
   const std::vector<KnobConfig> configs = SweepConfigs();
   for (const BenchPair& pair : pairs) {
     PairResult result = RunPair(pair, st);
-    {
+    if (!no_sweep) {
       Progress bar(pair.name + ": knob sweep", SweepWork(result, configs, st.sweep_cases));
       const std::vector<SweepRow> rows = RunSweep(result, configs, st.sweep_cases, &bar);
       run.sweep.insert(run.sweep.end(), rows.begin(), rows.end());

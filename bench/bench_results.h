@@ -27,6 +27,10 @@ struct PdOutcome {
   double depth = kNaN;        // m
   double time_us = kNaN;      // result.time_us
   int iterations = 0, contacts = 0;
+  int starts = 0;             // result.starts (cold starts out-projected)
+  // Still free kHapticFreeMargin (2e-6) of the pair's size further along the
+  // answer: verified free, not resting on a touching contact.
+  bool free_beyond = false;
   std::string initializer;
   pd::Vector3 translation_W = pd::Vector3::Zero();
 };
@@ -104,6 +108,9 @@ struct RunSettings {
   int haptic_ref = 0;       // reference PDs per haptic path
   uint64_t seed = 0;
   std::string mesh_dir, out_dir;
+  // Scenarios to run (random, path, shallow); empty = all.
+  std::vector<std::string> scenarios;
+  bool Runs(Scenario s) const;
 };
 
 // A warm answer counts as free only if the tool stays free this much further

@@ -46,6 +46,7 @@ std::vector<std::pair<std::string, std::string>> SweptKnobDefaults() {
   return {{"max_iterations", value(Label("max_iterations", d.max_iterations))},
           {"convergence_tol", value(Label("convergence_tol", d.convergence_tol, "%.0e"))},
           {"num_maximally_clear", value(Label("num_maximally_clear", d.num_maximally_clear))},
+          {"num_iterated_starts", value(Label("num_iterated_starts", d.num_iterated_starts))},
           {"num_random", value(Label("num_random", d.num_random))}};
 }
 
@@ -65,10 +66,16 @@ std::vector<KnobConfig> SweepConfigs() {
     k.options.convergence_tol = tol;
     out.push_back(k);
   }
-  for (int m : {1, 2, 3}) {
+  for (int m : {1, 3, 6, 12, 24}) {
     if (m == d.num_maximally_clear) continue;
     KnobConfig k{Label("num_maximally_clear", m), d};
     k.options.num_maximally_clear = m;
+    out.push_back(k);
+  }
+  for (int m : {1, 2, 4, 8}) {
+    if (m == d.num_iterated_starts) continue;
+    KnobConfig k{Label("num_iterated_starts", m), d};
+    k.options.num_iterated_starts = m;
     out.push_back(k);
   }
   for (int r : {0, 1, 2, 3, 4}) {

@@ -37,6 +37,13 @@ int RefCount(const BenchPair& pair, const RunSettings& st, Scenario s) {
 
 }  // namespace
 
+bool RunSettings::Runs(Scenario s) const {
+  if (scenarios.empty()) return true;
+  for (const std::string& name : scenarios)
+    if (name == ScenarioName(s)) return true;
+  return false;
+}
+
 PairResult RunPair(const BenchPair& pair, const RunSettings& st) {
   PairResult out;
   out.pair = pair;
@@ -45,12 +52,13 @@ PairResult RunPair(const BenchPair& pair, const RunSettings& st) {
   std::vector<ScenarioCases> generated;
   {
     Progress bar(tag + "making cases", 3);
-    generated.push_back(RandomCases(pair, st.random_cases, st.seed));
+    if (st.Runs(Scenario::kRandom)) generated.push_back(RandomCases(pair, st.random_cases, st.seed));
     bar.Tick();
-    generated.push_back(PathCases(pair, st.path_steps, st.seed + 1));
+    if (st.Runs(Scenario::kPath) && !pair.random_only) generated.push_back(PathCases(pair, st.path_steps, st.seed + 1));
     bar.Tick();
-    generated.push_back(ShallowCases(pair, st.shallow_steps, st.shallow_depth_fraction,
-                                     st.seed + 2));
+    if (st.Runs(Scenario::kShallow) && !pair.random_only)
+      generated.push_back(ShallowCases(pair, st.shallow_steps, st.shallow_depth_fraction,
+                                       st.seed + 2));
   }
 
   // PolyDepth first, alone on the machine's cores, so its timings are clean.

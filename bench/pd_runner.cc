@@ -14,6 +14,7 @@ PdOutcome Check(const BenchPair& pair, const Case& c, const pd::Isometry3& X_WS,
   o.depth = r.depth;
   o.time_us = r.time_us;
   o.iterations = r.iterations;
+  o.starts = r.starts;
   o.contacts = r.num_contacts;
   o.initializer = pd::InitializerName(r.initializer);
   o.translation_W = r.translation_W;
@@ -21,6 +22,10 @@ PdOutcome Check(const BenchPair& pair, const Case& c, const pd::Isometry3& X_WS,
   const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, c.X_WP, X_WS);
   const pd::Vector3 offset_S = X_WS.linear().transpose() * r.translation_W;
   o.verified_free = !pd::InCollision(mp, offset_S);
+  const double depth = offset_S.norm();
+  o.free_beyond = o.verified_free &&
+                  (depth <= 0 || !pd::InCollision(mp, (1.0 + kHapticFreeMargin * mp.size() / depth) *
+                                                          offset_S));
   o.in_pocket = o.verified_free && r.depth > 0 &&
                 pd::InCollision(mp, (1.0 + kPocketProbe) * offset_S);
   return o;

@@ -53,6 +53,7 @@ double RelativeError(double depth, double ref) {
 
 ScenarioSummary Summarize(const ScenarioResult& s) {
   ScenarioSummary out;
+  std::vector<double> starts;
   std::vector<double> times, iterations, contacts, errors, excess, ref_ms, ref_pd_us;
   int valid = 0, verified = 0, ref_free = 0;
   for (const CaseRecord& r : s.cases) {
@@ -60,6 +61,8 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
     ++out.n;
     times.push_back(r.pd.time_us);
     iterations.push_back(r.pd.iterations);
+    starts.push_back(r.pd.starts);
+    out.n_not_free_beyond += r.pd.verified_free && !r.pd.free_beyond;
     contacts.push_back(r.pd.contacts);
     valid += r.pd.valid;
     verified += r.pd.verified_free;
@@ -81,6 +84,7 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
   out.time_us = pd_bench::Summarize(times);
   out.mean_iterations = Mean(iterations);
   out.mean_contacts = Mean(contacts);
+  out.mean_starts = Mean(starts);
   if (out.n > 0) {
     out.valid_rate = static_cast<double>(valid) / out.n;
     out.verified_rate = static_cast<double>(verified) / out.n;

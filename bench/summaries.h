@@ -21,6 +21,8 @@ struct ScenarioSummary {
   int n = 0;                 // colliding cases
   Summary time_us;
   double mean_iterations = kNaN, mean_contacts = kNaN;
+  double mean_starts = kNaN;    // cold starts out-projected per query
+  int n_not_free_beyond = 0;    // verified free but not kHapticFreeMargin further out
   double valid_rate = kNaN;     // result.valid
   double verified_rate = kNaN;  // pd::InCollision at the answer is false
   int n_invalid = 0;            // !valid or !verified

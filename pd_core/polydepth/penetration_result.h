@@ -41,6 +41,7 @@ struct PenetrationResult {
   int num_regions = 0;
   int num_contacts = 0;  // feature pairs (vertex-face, face-vertex, edge-edge) at the answer
   int iterations = 0;    // contact-space projection iterations
+  int starts = 0;        // cold starts out-projected (0 when warm starts sufficed)
   Initializer initializer = Initializer::kNone;
   // False when a work budget (PolyDepthOptions::max_work) stopped the search
   // early: the answer is still verified free (an upper bound), just not

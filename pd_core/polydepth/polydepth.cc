@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "pd_core/proximity/candidate_pairs.h"
+#include "pd_core/polydepth/cold_starts.h"
 #include "pd_core/polydepth/contact_constraints.h"
 #include "pd_core/polydepth/contact_regions.h"
 #include "pd_core/geometry/fibonacci_sphere.h"
@@ -41,6 +42,9 @@ constexpr double kListLead = 0.6;
 // No list is built for a query that would need it wider than this many
 // times its usual radius.
 constexpr double kListMaxNeed = 2.0;
+// A cross-check out-projects at most this many support-plane starts and
+// iterates at most this many starts (it runs inside a warm query's budget).
+constexpr int kCrossCheckClear = 3;
 
 // A collision-free configuration and where it came from.
 struct Start {
@@ -81,6 +85,7 @@ struct PolyDepthSolver::Impl {
   MinNormScratch qp;
   std::vector<Start> starts;
   std::vector<SupportPlaneStart> support_starts;
+  std::vector<Vector3> inner_starts;  // cold: free probes below the best answer
   std::mt19937_64 rng;
   CandidatePairs candidates;  // leaf pairs near the last contact (warm start)
   CollisionWitness witness;   // a triangle pair that intersected lately
@@ -121,14 +126,16 @@ struct PolyDepthSolver::Impl {
 
   // Iterates localisation, in-projection and out-projection from a contact
   // configuration q_c (free, touching) until |q| stops improving.
+  // A cold start passes `abandon` to stop once it cannot beat the best.
   void Iterate(const ModelPair& pair, const PolyDepthOptions& opt, double size, Vector3 q_c,
-               Initializer origin) {
+               Initializer origin, StartAbandon* abandon = nullptr) {
   Impl& s = *this;
   const double tol = opt.convergence_tol * size;
   const double margin = opt.separation_margin * size;
   const double contact_distance = opt.contact_tol * size;
   s.Offer(q_c, origin);
   double norm_c = q_c.norm();
+  if (abandon) abandon->Update(norm_c);
   for (int it = 0; it < opt.max_iterations; ++it) {
     if (s.OutOfBudget()) break;
     ++s.iterations;
@@ -153,6 +160,7 @@ struct PolyDepthSolver::Impl {
     norm_c = norm_next;
     s.Offer(q_c, origin);
     if (!improved) break;
+    if (abandon && abandon->Update(norm_c)) break;
   }
 }
 
@@ -411,9 +419,20 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   bool cross_checking = false;
   auto cold_starts = [&] {
     s.starts.clear();
+    // A query without a previous answer: the cold options, and random
+    // directions drawn afresh from the seed (same query, same answer). A
+    // cross-check of a warm answer keeps the warm path's settings.
+    const bool cold = !cross_checking;
+    if (cold) s.rng.seed(options_.seed);
+    const int num_clear =
+        cold ? options_.num_maximally_clear : std::min(options_.num_maximally_clear, kCrossCheckClear);
+    const int num_iterated =
+        cold ? options_.num_iterated_starts : std::min(options_.num_iterated_starts, kCrossCheckClear);
+    const PolyDepthOptions& opt = options_;
+    const double start_margin = margin;
     ComputeSupportPlaneStarts(pair, &s.support_starts);
     // Maximally clear: the best support-plane separations of the two models.
-    for (int i = 0; i < std::min<int>(options_.num_maximally_clear, s.support_starts.size()); ++i)
+    for (int i = 0; i < std::min<int>(num_clear, s.support_starts.size()); ++i)
       s.starts.push_back({s.support_starts[i].q_S, Initializer::kMaximallyClear});
     if (options_.use_centroid) {
       const Vector3 d = pair.X_SP * probe_->centroid() - scene_->centroid();
@@ -433,15 +452,35 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       st.contact_norm = 1e300;
       if (cross_checking && s.BudgetSpent()) continue;
       bool touched = false;
-      st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched);
+      ++result.starts;
+      st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), start_margin, &touched);
       st.contact_norm = touched ? st.contact_q_S.norm() : 1e300;
     }
     std::sort(s.starts.begin(), s.starts.end(),
               [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });
-    for (int i = 0; i < std::min<int>(options_.num_iterated_starts, s.starts.size()); ++i) {
+    for (int i = 0; i < std::min<int>(num_iterated, s.starts.size()); ++i) {
       if (s.starts[i].contact_norm >= 1e300) break;
       if ((i > 0 || cross_checking) && (s.OutOfBudget() || (cross_checking && s.BudgetSpent()))) break;
-      s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin);
+      // After the first, a start stops once it cannot beat the best answer.
+      StartAbandon abandon(s.best_norm);
+      s.Iterate(pair, opt, size, s.starts[i].contact_q_S, s.starts[i].origin,
+                cold && i > 0 && options_.cold_abandon ? &abandon : nullptr);
+    }
+    // Probes from the inside: free configurations shallower than the best
+    // answer, out-projected toward the query and iterated like the others.
+    if (cold && options_.cold_inner_probes > 0 && s.best_origin != Initializer::kNone &&
+        !s.OutOfBudget()) {
+      InnerProbeStarts(pair, s.best_norm, options_.cold_inner_probes, 2, &s.inner_starts);
+      for (const Vector3& q0 : s.inner_starts) {
+        if (s.OutOfBudget()) break;
+        bool touched = false;
+        ++result.starts;
+        const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), start_margin, &touched);
+        if (!touched) continue;
+        StartAbandon abandon(s.best_norm);
+        s.Iterate(pair, opt, size, q_c, Initializer::kMaximallyClear,
+                  options_.cold_abandon ? &abandon : nullptr);
+      }
     }
   };
   const bool warm_found = s.best_origin != Initializer::kNone;

@@ -42,11 +42,23 @@ struct PolyDepthOptions {
   // wedged between two scene features) is not an escape; the solver moves on
   // out of the pocket instead. 0 disables the check.
   double pocket_thickness = 2e-6;
-  int num_maximally_clear = 3;     // best support-plane starts tried on a cold query
+  // Support-plane (maximally clear) starts out-projected on a cold query;
+  // their landing |q| ranks them. A cross-check of a warm answer uses at
+  // most kCrossCheckClear of them (polydepth.cc).
+  int num_maximally_clear = 8;
   bool use_centroid = true;
   int num_random = 2;              // random-direction starts on a cold query
-  int num_iterated_starts = 3;     // cold starts refined, closest contact first
+  int num_iterated_starts = 4;     // cold starts refined, closest contact first
   int num_sampling_directions = 64;  // fallback directional search
+  // After the starts, a cold query probes this many directions from the
+  // inside for free configurations shallower than its best answer
+  // (cold_starts.h, InnerProbeStarts; 0 = off).
+  int cold_inner_probes = 48;
+  // A cold start after the first stops once its extrapolated limit cannot
+  // beat the best verified answer (cold_starts.h, StartAbandon). Off by
+  // default: it halves the iterations but lost 8% on an interlocked knot
+  // pose (tests/pd_core/test_polydepth.cc, TorusKnotPair...).
+  bool cold_abandon = false;
   bool warm_start = true;          // honour `coherent` in Solve
   // Warm-started queries keep a list of the leaf pairs within this distance
   // of the previous contact and reuse it while the probe stays inside that

@@ -1,0 +1,43 @@
+#include "pd_core/polydepth/cold_starts.h"
+
+#include <algorithm>
+
+#include "pd_core/geometry/fibonacci_sphere.h"
+#include "pd_core/proximity/mesh_collision.h"
+
+namespace pd {
+
+bool StartAbandon::Update(double norm) {
+  if (last_ < 0.0) {
+    last_ = norm;
+    return false;
+  }
+  const double drop = last_ - norm;
+  last_ = norm;
+  if (drop <= 0.0) return false;  // the iteration itself stops on no progress
+  bool stop = false;
+  if (last_drop_ > 0.0) {
+    // Geometric tail: the remaining descent is drop * r / (1 - r); r is
+    // taken generously (at least 0.5, below 0.95) so slow starts continue.
+    const double r = std::clamp(drop / last_drop_, 0.7, 0.95);
+    const double limit = norm - drop * r / (1.0 - r);
+    stop = limit > best_ * (1.0 + slack_);
+  }
+  last_drop_ = drop;
+  return stop;
+}
+
+void InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions, int max_out,
+                      std::vector<Vector3>* out_S) {
+  out_S->clear();
+  // Deeper fractions first: the first free ones are the most promising.
+  for (double f : {0.7, 0.9}) {
+    for (int i = 0; i < num_directions; ++i) {
+      if (static_cast<int>(out_S->size()) >= max_out) return;
+      const Vector3 q = f * best_norm * FibonacciDirection(i, num_directions);
+      if (!InCollision(pair, q)) out_S->push_back(q);
+    }
+  }
+}
+
+}  // namespace pd
