@@ -45,7 +45,9 @@ void SweepPlot(const BenchRun& run, std::ostream& gp) {
   const int n = static_cast<int>(run.pairs.size());
   const int cols = n > 1 ? 2 : 1, rows = (n + cols - 1) / cols;
   const auto knobs = SweptKnobDefaults();
-  const char* colour[] = {"#1f77b4", "#ff7f0e", "#9467bd", "#8c564b"};
+  const char* colour[] = {"#1f77b4", "#ff7f0e", "#9467bd", "#8c564b",
+                          "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  const size_t num_colours = sizeof(colour) / sizeof(colour[0]);
   gp << "set terminal pngcairo size " << 900 * cols << "," << 600 * rows
      << " font 'DejaVu Sans,10'\n"
      << "set output 'pd_sweep_time_error.png'\n"
@@ -70,9 +72,9 @@ void SweepPlot(const BenchRun& run, std::ostream& gp) {
       const std::string block = "$s_" + id + "_" + std::to_string(k);
       Block(gp, block, pts);
       plots.push_back(block + " using 1:2 with linespoints pt 7 ps 1.1 lw 1.5 lc rgb '" +
-                      colour[k] + "' title 'random: " + knobs[k].first + "'");
+                      colour[k % num_colours] + "' title 'random: " + knobs[k].first + "'");
       plots.push_back(block + " using 1:2:3 with labels font ',8' offset 0.8,0.6 left tc rgb '" +
-                      colour[k] + "' notitle");
+                      colour[k % num_colours] + "' notitle");
     }
     for (Scenario sc : {Scenario::kPath, Scenario::kShallow}) {
       std::vector<SweepPoint> pts;
