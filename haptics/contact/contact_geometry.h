@@ -46,7 +46,6 @@ struct ContactSnapshot {
 
 class ContactGeometry {
  public:
-
   // The tool geometry in its frame G, placed in the tool frame T by X_TG.
   ContactGeometry(std::shared_ptr<const pd::Geometry> tool, const Isometry3& X_TG,
                   std::vector<SceneObject> objects, const ContactConfig& params,
@@ -90,8 +89,6 @@ class ContactGeometry {
   std::vector<int> candidates_now_;    // this call's candidates
   std::vector<int> candidates_prev_;   // the previous call's
   std::vector<int64_t> candidate_call_;  // per object: last call it was a candidate
-  // Per object: tool geometry pose at the pair's previous query (valid while
-  // it stays a candidate) and the motion beyond which it restarts cold (m).
   int64_t call_ = 0;
   // Scratch, sized at construction.
   Isometry3 X_WG_ = Isometry3::Identity();          // tool geometry pose this call

@@ -54,7 +54,9 @@ struct PenetrationResult {
   // against the cold starts (the shorter one on the same side won).
   bool cross_checked = false;
   // Times the answer was found inside a pocket of free space thinner than
-  // PolyDepthOptions::pocket_thickness and moved on out of it.
+  // PolyDepthOptions::pocket_thickness (it is moved out of the pocket when a
+  // free configuration with room beyond is found within 16x the contact
+  // distance; otherwise it stays, free at itself).
   int pocket_escapes = 0;
   int64_t box_tests = 0;       // bounding-box tests this query made (cost counter)
   int64_t triangle_tests = 0;  // triangle-pair tests this query made

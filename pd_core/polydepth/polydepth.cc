@@ -428,8 +428,6 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         cold ? options_.num_maximally_clear : std::min(options_.num_maximally_clear, kCrossCheckClear);
     const int num_iterated =
         cold ? options_.num_iterated_starts : std::min(options_.num_iterated_starts, kCrossCheckClear);
-    const PolyDepthOptions& opt = options_;
-    const double start_margin = margin;
     ComputeSupportPlaneStarts(pair, &s.support_starts);
     // Maximally clear: the best support-plane separations of the two models.
     for (int i = 0; i < std::min<int>(num_clear, s.support_starts.size()); ++i)
@@ -453,7 +451,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (cross_checking && s.BudgetSpent()) continue;
       bool touched = false;
       ++result.starts;
-      st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), start_margin, &touched);
+      st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched);
       st.contact_norm = touched ? st.contact_q_S.norm() : 1e300;
     }
     std::sort(s.starts.begin(), s.starts.end(),
@@ -463,7 +461,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if ((i > 0 || cross_checking) && (s.OutOfBudget() || (cross_checking && s.BudgetSpent()))) break;
       // After the first, a start stops once it cannot beat the best answer.
       StartAbandon abandon(s.best_norm);
-      s.Iterate(pair, opt, size, s.starts[i].contact_q_S, s.starts[i].origin,
+      s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin,
                 cold && i > 0 && options_.cold_abandon ? &abandon : nullptr);
     }
     // Probes from the inside: free configurations shallower than the best
@@ -475,10 +473,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         if (s.OutOfBudget()) break;
         bool touched = false;
         ++result.starts;
-        const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), start_margin, &touched);
+        const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
         if (!touched) continue;
         StartAbandon abandon(s.best_norm);
-        s.Iterate(pair, opt, size, q_c, Initializer::kMaximallyClear,
+        s.Iterate(pair, options_, size, q_c, Initializer::kMaximallyClear,
                   options_.cold_abandon ? &abandon : nullptr);
       }
     }
