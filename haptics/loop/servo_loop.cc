@@ -101,6 +101,7 @@ void ServoLoop::Run() {
   int64_t phase_offset_ns = 0;  // sum of the phase lock's shifts
   int64_t last_receipt_ns = 0, last_utime_us = 0;  // of the last pose taken
   int64_t previous_deadline = 0;
+  int64_t cpu_before = ThreadCpuNowNs();  // the thread's CPU time at the previous tick's end
   const int64_t window_ns = std::clamp<int64_t>(std::llround(options_.pose_window_us * 1e3), 0, period_ns / 2);
   while (!stop_.load(std::memory_order_relaxed)) {
     bool by_pose = false;
@@ -180,6 +181,13 @@ void ServoLoop::Run() {
     const double compute_us = static_cast<double>(end - wake) * 1e-3;
     window_compute_us_.Add(compute_us);
     compute_hist_.Add(compute_us);
+    // CPU time since the previous tick's end: the sleep takes none, so this
+    // is the wake-up and this tick (an overestimate by a few us, which only
+    // ever counts a miss as compute rather than stalled).
+    const int64_t cpu_now = ThreadCpuNowNs();
+    const int64_t cpu_ns = cpu_now - cpu_before;
+    cpu_before = cpu_now;
+    cpu_hist_.Add(static_cast<double>(cpu_ns) * 1e-3);
     ++ticks_;
     // The phase follows the pose, never the rate: the deadlines stay within
     // a period of the nominal grid (any phase is reachable), so over a run
@@ -193,9 +201,13 @@ void ServoLoop::Run() {
     const bool missed = end > next;
     if (missed) {
       ++misses_;
-      // Would it have missed had it woken on time? Then the compute is to blame.
-      if (scheduled + (end - wake) > next) {
+      // Would it have missed had it woken on time? Then the tick is to
+      // blame: its CPU time if that alone overran, else the time it was not
+      // running (a stall). Otherwise the late wake-up is.
+      if (scheduled + cpu_ns > next) {
         ++misses_compute_;
+      } else if (scheduled + (end - wake) > next) {
+        ++misses_stalled_;
       } else {
         ++misses_late_;
       }
@@ -225,6 +237,7 @@ void ServoLoop::PublishStatus(int64_t now_ns, int64_t window_ticks, int64_t wind
   s.compute_us = window_compute_us_.Summarize();
   s.deadline_misses = misses_;
   s.misses_compute = misses_compute_;
+  s.misses_stalled = misses_stalled_;
   s.misses_late_wakeup = misses_late_;
   s.late_wakeups = late_wakeups_;
   s.wake_latency_us = window_wake_us_.Summarize();
@@ -250,6 +263,7 @@ LoopSummary ServoLoop::Summary() const {
   s.achieved_rate_hz = s.elapsed_s > 0.0 ? ticks_ / s.elapsed_s : 0.0;
   s.deadline_misses = misses_;
   s.misses_compute = misses_compute_;
+  s.misses_stalled = misses_stalled_;
   s.misses_late_wakeup = misses_late_;
   s.late_wakeups = late_wakeups_;
   s.wake_latency_p50_us = wake_hist_.Percentile(0.50);
@@ -267,6 +281,8 @@ LoopSummary ServoLoop::Summary() const {
   s.compute_p50_us = compute_hist_.Percentile(0.50);
   s.compute_p99_us = compute_hist_.Percentile(0.99);
   s.compute_max_us = compute_hist_.max();
+  s.tick_cpu_p99_us = cpu_hist_.Percentile(0.99);
+  s.tick_cpu_max_us = cpu_hist_.max();
   s.poses_taken = pose_wait_hist_.count();
   s.pose_wait_p50_us = pose_wait_hist_.Percentile(0.50);
   s.pose_wait_p99_us = pose_wait_hist_.Percentile(0.99);

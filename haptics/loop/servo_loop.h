@@ -6,8 +6,9 @@
 // and a CPU of its own and logs a fallback if refused.
 //
 // Measured per tick, into preallocated buffers: period jitter |actual period
-// - nominal|, compute time (wake-up to after the sink returns), deadline
-// misses (a tick finishing after the next tick's start; a tick more than a
+// - nominal|, compute time (wake-up to after the sink returns), the thread's
+// CPU time over the tick (one CLOCK_THREAD_CPUTIME_ID read after the send),
+// deadline misses (a tick finishing after the next tick's start; a tick more than a
 // period late skips the missed slots instead of bursting). At status_rate_hz
 // the loop summarises its window (nth_element on a preallocated copy) into a
 // LoopStatus the main thread takes without locks. With
@@ -80,9 +81,14 @@ struct LoopStatus {
   TimingSummary jitter_us;        // this window
   TimingSummary compute_us;       // this window
   int64_t deadline_misses = 0;    // total
-  // Of those: the tick's own compute overran its period (ours to fix), or
-  // it woke up so late that even its compute did not fit (the platform's).
+  // Of those, by cause (each miss has one):
+  //  compute: the tick's own CPU time overran its period (ours to fix);
+  //  stalled: its CPU time fit, but the thread was not running for long
+  //    enough inside the tick to miss (preempted by another thread or an
+  //    interrupt, or its vCPU descheduled by the hypervisor: the platform's);
+  //  late wake-up: it woke up so late that its tick did not fit (the platform's).
   int64_t misses_compute = 0;     // total
+  int64_t misses_stalled = 0;     // total
   int64_t misses_late_wakeup = 0; // total
   int64_t late_wakeups = 0;       // total wake-ups >= late_wakeup_us late
   TimingSummary wake_latency_us;  // this window: wake-up - scheduled start
@@ -99,7 +105,7 @@ struct LoopSummary {
   double elapsed_s = 0.0;
   double achieved_rate_hz = 0.0;
   int64_t deadline_misses = 0;
-  int64_t misses_compute = 0, misses_late_wakeup = 0;  // see LoopStatus
+  int64_t misses_compute = 0, misses_stalled = 0, misses_late_wakeup = 0;  // see LoopStatus
   int64_t late_wakeups = 0;
   double wake_latency_p50_us = 0.0, wake_latency_p99_us = 0.0, wake_latency_max_us = 0.0;
   double model_age_p50_ticks = 0.0, model_age_p99_ticks = 0.0, model_age_max_ticks = 0.0;
@@ -107,6 +113,8 @@ struct LoopSummary {
   bool geometry_thread = false;    // a geometry thread ran
   double jitter_p99_us = 0.0, jitter_max_us = 0.0;
   double compute_p50_us = 0.0, compute_p99_us = 0.0, compute_max_us = 0.0;
+  // The thread's CPU time per tick (compute minus the time it did not run).
+  double tick_cpu_p99_us = 0.0, tick_cpu_max_us = 0.0;
   bool realtime = false;
   bool pinned = false;
   // Receipt-to-tick wait of the poses the ticks took (us): the part of the
@@ -158,9 +166,9 @@ class ServoLoop {
 
   // Loop-thread state (read by others only after join).
   SampleWindow window_jitter_us_, window_compute_us_, window_wake_us_, window_age_;
-  DurationHistogram jitter_hist_, compute_hist_, pose_wait_hist_, wake_hist_, age_hist_;
+  DurationHistogram jitter_hist_, compute_hist_, cpu_hist_, pose_wait_hist_, wake_hist_, age_hist_;
   std::unique_ptr<GeometryThread> geometry_thread_;
-  int64_t misses_compute_ = 0, misses_late_ = 0, late_wakeups_ = 0;
+  int64_t misses_compute_ = 0, misses_stalled_ = 0, misses_late_ = 0, late_wakeups_ = 0;
   int64_t window_updates_start_ = 0;
   int64_t ticks_by_pose_ = 0, ticks_by_deadline_ = 0;
   PhaseLock phase_lock_;

@@ -149,7 +149,10 @@ TEST(StatusMessage, CarriesLoopAndReceiverCounters) {
   loop.achieved_rate_hz = 999.5;
   loop.jitter_us = {100, 3.0, 20.0, 40.0};
   loop.compute_us = {100, 50.0, 90.0, 120.0};
-  loop.deadline_misses = 2;
+  loop.deadline_misses = 9;
+  loop.misses_compute = 2;
+  loop.misses_stalled = 3;
+  loop.misses_late_wakeup = 4;
   loop.realtime = true;
   loop.renderer.poses_rejected.bad_quaternion = 3;
   loop.renderer.poses_rejected.outside_workspace = 1;
@@ -160,7 +163,10 @@ TEST(StatusMessage, CarriesLoopAndReceiverCounters) {
   EXPECT_EQ(m.achieved_rate_hz, 999.5);
   EXPECT_EQ(m.period_jitter_p99_us, 20.0);
   EXPECT_EQ(m.compute_max_us, 120.0);
-  EXPECT_EQ(m.deadline_misses, 2);
+  EXPECT_EQ(m.deadline_misses, 9);
+  EXPECT_EQ(m.misses_compute, 2);
+  EXPECT_EQ(m.misses_stalled, 3);
+  EXPECT_EQ(m.misses_late_wakeup, 4);
   EXPECT_EQ(m.poses_received, 990);
   EXPECT_EQ(m.messages_malformed, 4);
   EXPECT_EQ(m.poses_dropped, 6);

@@ -167,5 +167,69 @@ TEST(ServoLoop, PoseTriggeredTicksRecoverFromALatePose) {
   EXPECT_EQ(sink.gaps, 0);
 }
 
+// A sink that overruns every 40th tick by 2.5 ms, either computing (busy
+// for that long) or not running (asleep: to the loop, like a preemption or
+// a descheduled vCPU: wall time passes, the thread's CPU time does not).
+class OverrunningSink final : public WrenchSink {
+ public:
+  explicit OverrunningSink(bool busy) : busy_(busy) {}
+  void Publish(const WrenchOutput& out) override {
+    count.fetch_add(1);
+    if (out.tick % 40 != 20) return;
+    ++overruns;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(2500);
+    if (busy_) {
+      while (std::chrono::steady_clock::now() < until) {
+      }
+    } else {
+      std::this_thread::sleep_until(until);
+    }
+  }
+  std::atomic<int64_t> count{0};
+  int64_t overruns = 0;
+
+ private:
+  bool busy_;
+};
+
+LoopSummary RunWithOverruns(OverrunningSink* sink) {
+  const SceneConfig config = test::BoxOnBoxConfig();
+  const SceneModels models = BuildSceneModels(config);
+  HapticRenderer renderer(config, models);
+  LatestValue<PoseSample> poses;
+  ServoLoopOptions options;
+  options.realtime_priority = 0;
+  options.trigger = TickTrigger::kFixedRate;
+  ServoLoop loop(&renderer, &poses, sink, options);
+  poses.Write(test::MakePose(1, Vector3(0, 0, 0.03)));
+  loop.Start();
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (sink->count.load() < 420 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  loop.Stop();
+  return loop.Summary();
+}
+
+// Misses by cause: a tick whose own CPU time overruns is a compute miss (ours
+// to fix); one that overruns without running (preempted, its vCPU stolen) is
+// a stall, the platform's. The old rule counted both as compute.
+TEST(ServoLoop, MissesAreCountedByCauseFromTheTicksCpuTime) {
+  OverrunningSink busy(true);
+  const LoopSummary b = RunWithOverruns(&busy);
+  ASSERT_GE(busy.overruns, 10);
+  EXPECT_GE(b.misses_compute, busy.overruns);
+  EXPECT_GE(b.tick_cpu_max_us, 2000.0);
+  EXPECT_EQ(b.deadline_misses, b.misses_compute + b.misses_stalled + b.misses_late_wakeup);
+
+  OverrunningSink asleep(false);
+  const LoopSummary a = RunWithOverruns(&asleep);
+  ASSERT_GE(asleep.overruns, 10);
+  EXPECT_GE(a.misses_stalled, asleep.overruns);
+  EXPECT_EQ(a.misses_compute, 0);  // box on box: tens of us of CPU per tick
+  EXPECT_GE(a.compute_max_us, 2500.0);
+  EXPECT_LT(a.tick_cpu_max_us, 1000.0);
+  EXPECT_EQ(a.deadline_misses, a.misses_compute + a.misses_stalled + a.misses_late_wakeup);
+}
+
 }  // namespace
 }  // namespace haptics
