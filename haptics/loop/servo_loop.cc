@@ -181,11 +181,14 @@ void ServoLoop::Run() {
     const double compute_us = static_cast<double>(end - wake) * 1e-3;
     window_compute_us_.Add(compute_us);
     compute_hist_.Add(compute_us);
-    // CPU time since the previous tick's end: the sleep takes none, so this
-    // is the wake-up and this tick (an overestimate by a few us, which only
-    // ever counts a miss as compute rather than stalled).
+    // The tick's CPU time: the thread's CPU time since the previous tick's
+    // end (the sleep takes none), at most the tick's wall time. The cap
+    // matters on this VM: a wake-up delayed by milliseconds can come with
+    // as much CPU time charged to the thread before it ran its tick (time
+    // stolen from the vCPU while the thread was current is not always
+    // subtracted); that is the late wake-up's, not the tick's.
     const int64_t cpu_now = ThreadCpuNowNs();
-    const int64_t cpu_ns = cpu_now - cpu_before;
+    const int64_t cpu_ns = std::min(cpu_now - cpu_before, end - wake);
     cpu_before = cpu_now;
     cpu_hist_.Add(static_cast<double>(cpu_ns) * 1e-3);
     ++ticks_;
@@ -203,13 +206,13 @@ void ServoLoop::Run() {
       ++misses_;
       // Would it have missed had it woken on time? Then the tick is to
       // blame: its CPU time if that alone overran, else the time it was not
-      // running (a stall). Otherwise the late wake-up is.
-      if (scheduled + cpu_ns > next) {
-        ++misses_compute_;
-      } else if (scheduled + (end - wake) > next) {
-        ++misses_stalled_;
-      } else {
+      // running inside the tick (a stall). Otherwise the late wake-up is.
+      if (scheduled + (end - wake) <= next) {
         ++misses_late_;
+      } else if (scheduled + cpu_ns > next) {
+        ++misses_compute_;
+      } else {
+        ++misses_stalled_;
       }
       // More than a whole period late: skip the lost slots, do not burst.
       if (end > next + period_ns) next += ((end - next) / period_ns) * period_ns;
