@@ -14,11 +14,11 @@
 #include "haptics_msgs/probe_pose_t.hpp"
 #include "haptics_msgs/server_status_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
-#include "probes/channels.h"
-#include "probes/mono_clock.h"
-#include "probes/network_guard.h"
-#include "probes/realtime.h"
-#include "probes/stop_signal.h"
+#include "probes/transport/channels.h"
+#include "probes/transport/mono_clock.h"
+#include "probes/transport/network_guard.h"
+#include "probes/transport/realtime.h"
+#include "probes/transport/stop_signal.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // probe_log_upgrade: converts an LCM log recorded before probe_pose_t
 // version 2 (no sender identity) so that probe_replay reads it again
-// (probes/log_upgrade.h): every version-1 pose on the pose channel becomes a
+// (probes/transport/log_upgrade.h): every version-1 pose on the pose channel becomes a
 // version-2 pose of one sender (--session, random by default, and
 // --device), all other fields unchanged; every other event is copied byte
 // for byte.
@@ -18,9 +18,9 @@
 #include <iostream>
 #include <string>
 
-#include "probes/channels.h"
-#include "probes/log_upgrade.h"
-#include "probes/sender.h"
+#include "probes/transport/channels.h"
+#include "probes/transport/log_upgrade.h"
+#include "probes/transport/sender.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"probe_log_upgrade: converts a probe_pose_t version-1 LCM log (no sender identity) to version 2"};

@@ -18,10 +18,10 @@
 #include "haptics_msgs/probe_pose_t.hpp"
 #include "haptics_msgs/probe_pose_v1_t.hpp"
 #include "msgs/sender_identity.h"
-#include "probes/channels.h"
-#include "probes/mono_clock.h"
-#include "probes/network_guard.h"
-#include "probes/stop_signal.h"
+#include "probes/transport/channels.h"
+#include "probes/transport/mono_clock.h"
+#include "probes/transport/network_guard.h"
+#include "probes/transport/stop_signal.h"
 
 namespace {
 

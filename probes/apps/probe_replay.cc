@@ -17,18 +17,18 @@
 #include <thread>
 
 #include "haptics_msgs/probe_pose_t.hpp"
-#include "probes/channels.h"
-#include "probes/input_error.h"
-#include "probes/load_trajectory.h"
-#include "probes/mono_clock.h"
-#include "probes/network_guard.h"
-#include "probes/pose_message.h"
-#include "probes/realtime.h"
-#include "probes/replay_listener.h"
-#include "probes/replay_result_csv.h"
-#include "probes/replay_summary.h"
-#include "probes/sender.h"
-#include "probes/session_plot.h"
+#include "probes/transport/channels.h"
+#include "probes/trajectory/input_error.h"
+#include "probes/trajectory/load_trajectory.h"
+#include "probes/transport/mono_clock.h"
+#include "probes/transport/network_guard.h"
+#include "probes/transport/pose_message.h"
+#include "probes/transport/realtime.h"
+#include "probes/transport/replay_listener.h"
+#include "probes/results/replay_result_csv.h"
+#include "probes/results/replay_summary.h"
+#include "probes/transport/sender.h"
+#include "probes/results/session_plot.h"
 
 namespace {
 

@@ -13,23 +13,23 @@
 #include <vector>
 
 #include "haptics_msgs/probe_pose_t.hpp"
-#include "probes/channels.h"
-#include "probes/input_error.h"
-#include "probes/mono_clock.h"
-#include "probes/motion_params.h"
-#include "probes/motion_scripts.h"
-#include "probes/network_guard.h"
-#include "probes/pose_message.h"
-#include "probes/realtime.h"
-#include "probes/sender.h"
-#include "probes/trajectory_csv.h"
+#include "probes/transport/channels.h"
+#include "probes/trajectory/input_error.h"
+#include "probes/transport/mono_clock.h"
+#include "probes/trajectory/motion_params.h"
+#include "probes/trajectory/motion_scripts.h"
+#include "probes/transport/network_guard.h"
+#include "probes/transport/pose_message.h"
+#include "probes/transport/realtime.h"
+#include "probes/transport/sender.h"
+#include "probes/trajectory/trajectory_csv.h"
 
 namespace {
 
 constexpr const char* kFooter = R"(
 Parameters come from --params FILE (YAML mapping with the option names below
 without dashes, e.g. `centre: [0, 0, 0.05]`) and are overridden by options
-given on the command line. See probes/motion_params.h for what each one means
+given on the command line. See probes/trajectory/motion_params.h for what each one means
 per script. With --csv-out and without --publish nothing is sent and no time
 passes: the trajectory is computed and written at once.
 

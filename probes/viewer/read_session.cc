@@ -10,9 +10,9 @@
 
 #include "haptics_msgs/probe_pose_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
-#include "probes/input_error.h"
-#include "probes/replay_result_csv.h"
-#include "probes/trajectory_lcm_log.h"
+#include "probes/trajectory/input_error.h"
+#include "probes/results/replay_result_csv.h"
+#include "probes/trajectory/trajectory_lcm_log.h"
 
 namespace probes {
 namespace {

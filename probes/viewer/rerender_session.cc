@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "haptics/haptic_renderer.h"
-#include "probes/latency_stats.h"
+#include "probes/results/latency_stats.h"
 
 namespace probes {
 

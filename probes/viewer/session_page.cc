@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "pd_core/geometry/tessellate_geometry.h"
-#include "probes/input_error.h"
+#include "probes/trajectory/input_error.h"
 #include "probes/viewer/viewer_assets.h"
 
 namespace probes {

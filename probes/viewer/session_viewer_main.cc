@@ -11,8 +11,8 @@
 
 #include "haptics/scene/build_scene.h"
 #include "haptics/scene/load_scene_config.h"
-#include "probes/channels.h"
-#include "probes/input_error.h"
+#include "probes/transport/channels.h"
+#include "probes/trajectory/input_error.h"
 #include "probes/viewer/read_session.h"
 #include "probes/viewer/rerender_session.h"
 #include "probes/viewer/session_page.h"

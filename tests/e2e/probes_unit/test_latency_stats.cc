@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "probes/latency_stats.h"
+#include "probes/results/latency_stats.h"
 
 namespace probes {
 namespace {

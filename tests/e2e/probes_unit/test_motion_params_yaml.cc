@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "probes/input_error.h"
-#include "probes/motion_params.h"
+#include "probes/trajectory/input_error.h"
+#include "probes/trajectory/motion_params.h"
 #include "temp_file.h"
 
 namespace probes {

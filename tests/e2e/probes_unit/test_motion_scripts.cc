@@ -6,9 +6,9 @@
 #include <cmath>
 #include <string>
 
-#include "probes/input_error.h"
-#include "probes/motion_params.h"
-#include "probes/motion_scripts.h"
+#include "probes/trajectory/input_error.h"
+#include "probes/trajectory/motion_params.h"
+#include "probes/trajectory/motion_scripts.h"
 
 namespace probes {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "probes/network_guard.h"
+#include "probes/transport/network_guard.h"
 
 namespace probes {
 namespace {

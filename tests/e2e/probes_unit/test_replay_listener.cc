@@ -6,7 +6,7 @@
 
 #include "haptics_msgs/server_status_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
-#include "probes/replay_listener.h"
+#include "probes/transport/replay_listener.h"
 
 namespace probes {
 namespace {

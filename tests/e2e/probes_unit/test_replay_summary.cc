@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "probes/replay_summary.h"
+#include "probes/results/replay_summary.h"
 
 namespace probes {
 namespace {

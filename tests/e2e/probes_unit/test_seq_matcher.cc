@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "probes/seq_matcher.h"
+#include "probes/results/seq_matcher.h"
 
 namespace probes {
 namespace {

@@ -5,8 +5,8 @@
 #include <sstream>
 #include <string>
 
-#include "probes/input_error.h"
-#include "probes/trajectory_csv.h"
+#include "probes/trajectory/input_error.h"
+#include "probes/trajectory/trajectory_csv.h"
 
 namespace probes {
 namespace {

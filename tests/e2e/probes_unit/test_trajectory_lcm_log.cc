@@ -9,10 +9,10 @@
 #include "haptics_msgs/probe_pose_t.hpp"
 #include "haptics_msgs/probe_pose_v1_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
-#include "probes/input_error.h"
-#include "probes/load_trajectory.h"
-#include "probes/log_upgrade.h"
-#include "probes/trajectory_lcm_log.h"
+#include "probes/trajectory/input_error.h"
+#include "probes/trajectory/load_trajectory.h"
+#include "probes/transport/log_upgrade.h"
+#include "probes/trajectory/trajectory_lcm_log.h"
 #include "temp_file.h"
 
 namespace probes {

@@ -25,7 +25,7 @@
 
 #include "haptics_msgs/probe_pose_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
-#include "probes/network_guard.h"
+#include "probes/transport/network_guard.h"
 
 namespace {
 

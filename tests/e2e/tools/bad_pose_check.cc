@@ -31,7 +31,7 @@
 #include "haptics_msgs/server_status_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
 #include "msgs/sender_identity.h"
-#include "probes/network_guard.h"
+#include "probes/transport/network_guard.h"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <string>
 
-#include "probes/sender.h"
+#include "probes/transport/sender.h"
 
 namespace probes {
 

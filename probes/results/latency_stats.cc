@@ -1,4 +1,4 @@
-#include "probes/latency_stats.h"
+#include "probes/results/latency_stats.h"
 
 #include <algorithm>
 #include <cmath>

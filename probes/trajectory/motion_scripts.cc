@@ -1,9 +1,9 @@
-#include "probes/motion_scripts.h"
+#include "probes/trajectory/motion_scripts.h"
 
 #include <cmath>
 #include <string>
 
-#include "probes/input_error.h"
+#include "probes/trajectory/input_error.h"
 
 namespace probes {
 namespace {

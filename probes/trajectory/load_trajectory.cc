@@ -1,7 +1,7 @@
-#include "probes/load_trajectory.h"
+#include "probes/trajectory/load_trajectory.h"
 
-#include "probes/trajectory_csv.h"
-#include "probes/trajectory_lcm_log.h"
+#include "probes/trajectory/trajectory_csv.h"
+#include "probes/trajectory/trajectory_lcm_log.h"
 
 namespace probes {
 

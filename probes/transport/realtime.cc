@@ -1,4 +1,4 @@
-#include "probes/realtime.h"
+#include "probes/transport/realtime.h"
 
 #include <pthread.h>
 #include <sched.h>

@@ -1,4 +1,4 @@
-#include "probes/session_plot.h"
+#include "probes/results/session_plot.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -21,7 +21,7 @@ std::string Quoted(const std::string& s) {
   return q + "'";
 }
 
-// Columns by the names of the result CSV header (probes/replay_result_csv.h);
+// Columns by the names of the result CSV header (probes/results/replay_result_csv.h);
 // unanswered poses have empty fields, which gnuplot skips.
 constexpr const char* kPanels = R"GP(
 set datafile separator ","

@@ -22,7 +22,7 @@
 //   rate_hz      sample rate
 #include <string>
 
-#include "probes/pose_sample.h"
+#include "probes/trajectory/pose_sample.h"
 
 namespace probes {
 

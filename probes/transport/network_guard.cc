@@ -1,4 +1,4 @@
-#include "probes/network_guard.h"
+#include "probes/transport/network_guard.h"
 
 #include <cstdlib>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "probes/motion_path.h"
+#include "probes/trajectory/motion_path.h"
 
 #include <algorithm>
 #include <cmath>

@@ -21,8 +21,8 @@
 #include <nlohmann/json.hpp>
 
 #include "haptics_msgs/server_status_t.hpp"
-#include "probes/latency_stats.h"
-#include "probes/seq_matcher.h"
+#include "probes/results/latency_stats.h"
+#include "probes/results/seq_matcher.h"
 
 namespace probes {
 

@@ -16,8 +16,8 @@
 #include "haptics_msgs/server_status_t.hpp"
 #include "haptics_msgs/wrench_t.hpp"
 #include "msgs/sender_identity.h"
-#include "probes/mono_clock.h"
-#include "probes/seq_matcher.h"
+#include "probes/transport/mono_clock.h"
+#include "probes/results/seq_matcher.h"
 
 namespace probes {
 

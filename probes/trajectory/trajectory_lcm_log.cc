@@ -1,4 +1,4 @@
-#include "probes/trajectory_lcm_log.h"
+#include "probes/trajectory/trajectory_lcm_log.h"
 
 #include <cmath>
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include "haptics_msgs/probe_pose_t.hpp"
 #include "haptics_msgs/probe_pose_v1_t.hpp"
 #include "msgs/sender_identity.h"
-#include "probes/input_error.h"
+#include "probes/trajectory/input_error.h"
 
 namespace probes {
 namespace {

@@ -1,4 +1,4 @@
-#include "probes/replay_result_csv.h"
+#include "probes/results/replay_result_csv.h"
 
 #include <cstdio>
 #include <ostream>

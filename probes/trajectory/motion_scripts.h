@@ -12,9 +12,9 @@
 //   insert_peg:         down the hole axis to centre - depth*z, optional
 //                       circular wiggle of radius amplitude, hold, out;
 //                       repeated.
-#include "probes/motion_params.h"
-#include "probes/motion_path.h"
-#include "probes/pose_sample.h"
+#include "probes/trajectory/motion_params.h"
+#include "probes/trajectory/motion_path.h"
+#include "probes/trajectory/pose_sample.h"
 
 namespace probes {
 

@@ -1,4 +1,4 @@
-#include "probes/trajectory_csv.h"
+#include "probes/trajectory/trajectory_csv.h"
 
 #include <cctype>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "probes/input_error.h"
+#include "probes/trajectory/input_error.h"
 
 namespace probes {
 namespace {

@@ -1,4 +1,4 @@
-#include "probes/replay_summary.h"
+#include "probes/results/replay_summary.h"
 
 #include <algorithm>
 #include <cmath>

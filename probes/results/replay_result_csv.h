@@ -9,8 +9,8 @@
 #include <iosfwd>
 #include <vector>
 
-#include "probes/pose_sample.h"
-#include "probes/seq_matcher.h"
+#include "probes/trajectory/pose_sample.h"
+#include "probes/results/seq_matcher.h"
 
 namespace probes {
 

@@ -1,4 +1,4 @@
-#include "probes/seq_matcher.h"
+#include "probes/results/seq_matcher.h"
 
 #include "haptics_msgs/wrench_t.hpp"
 

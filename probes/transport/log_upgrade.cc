@@ -1,11 +1,11 @@
-#include "probes/log_upgrade.h"
+#include "probes/transport/log_upgrade.h"
 
 #include <lcm/lcm-cpp.hpp>
 #include <vector>
 
 #include "haptics_msgs/probe_pose_t.hpp"
 #include "haptics_msgs/probe_pose_v1_t.hpp"
-#include "probes/input_error.h"
+#include "probes/trajectory/input_error.h"
 
 namespace probes {
 namespace {

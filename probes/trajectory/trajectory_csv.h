@@ -5,7 +5,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "probes/pose_sample.h"
+#include "probes/trajectory/pose_sample.h"
 
 namespace probes {
 

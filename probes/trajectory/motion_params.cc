@@ -1,11 +1,11 @@
-#include "probes/motion_params.h"
+#include "probes/trajectory/motion_params.h"
 
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <set>
 
-#include "probes/input_error.h"
+#include "probes/trajectory/input_error.h"
 
 namespace probes {
 namespace {

@@ -5,7 +5,7 @@
 // never asks the server to render an impossible jump.
 #include <vector>
 
-#include "probes/pose_sample.h"
+#include "probes/trajectory/pose_sample.h"
 
 namespace probes {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "probes/pose_sample.h"
+#include "probes/trajectory/pose_sample.h"
 
 namespace probes {
 

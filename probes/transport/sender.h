@@ -7,7 +7,7 @@
 #include <string>
 
 #include "msgs/sender_identity.h"
-#include "probes/input_error.h"
+#include "probes/trajectory/input_error.h"
 
 namespace probes {
 

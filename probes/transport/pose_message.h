@@ -6,8 +6,8 @@
 #include <cstdint>
 
 #include "haptics_msgs/probe_pose_t.hpp"
-#include "probes/pose_sample.h"
-#include "probes/sender.h"
+#include "probes/trajectory/pose_sample.h"
+#include "probes/transport/sender.h"
 
 namespace probes {
 
