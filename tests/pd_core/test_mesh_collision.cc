@@ -6,16 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <vector>
 #include <memory>
 #include <random>
 #include <string>
 
 #include "pd_core/geometry/fibonacci_sphere.h"
-#include "pd_core/mesh/load_mesh.h"
 #include "pd_core/proximity/mesh_collision.h"
 #include "pd_core/proximity/model_pair.h"
 #include "pd_core/proximity/triangle_geometry.h"
+#include "tests/pd_core/brute_force_pairs.h"
 #include "tests/prerequisites.h"
 
 namespace pd {
@@ -24,44 +23,24 @@ namespace {
 using Model = std::shared_ptr<const CollisionModel>;
 const std::string kMeshDir = PD_TEST_MESH_DIR;
 
-Model LoadNormalised(const std::string& name) {
-  TriangleMesh mesh = LoadMesh(kMeshDir + "/" + name).mesh;
-  const MeshBounds b = ComputeBounds(mesh);
-  double r = 0.0;
-  for (const Vector3& v : mesh.vertices) r = std::max(r, (v - b.center()).norm());
-  for (Vector3& v : mesh.vertices) v = 0.1 * (v - b.center()) / r;
-  return CollisionModel::Build(std::move(mesh));
-}
-
-// Any probe triangle crossing any scene triangle, over all pairs (no BVH;
-// an axis-aligned box check first).
+// Any probe triangle crossing any scene triangle, over all pairs (no BVH).
 bool BruteForceSurfacesIntersect(const ModelPair& pair, const Vector3& offset_S) {
-  const int n_P = pair.P.mesh().num_triangles(), n_S = pair.S.mesh().num_triangles();
-  std::vector<Vector3> lo_S(n_S), hi_S(n_S);
-  for (int ts = 0; ts < n_S; ++ts) {
-    Vector3 s[3];
-    pair.SceneTriangle(ts, s);
-    lo_S[ts] = s[0].cwiseMin(s[1]).cwiseMin(s[2]);
-    hi_S[ts] = s[0].cwiseMax(s[1]).cwiseMax(s[2]);
-  }
-  for (int tp = 0; tp < n_P; ++tp) {
-    Vector3 p[3];
+  bool hit = false;
+  test::ForEachOverlappingTrianglePair(pair, offset_S, Vector3::Zero(), [&](int tp, int ts) {
+    Vector3 p[3], s[3];
     pair.ProbeTriangle(tp, offset_S, p);
-    const Vector3 lo = p[0].cwiseMin(p[1]).cwiseMin(p[2]), hi = p[0].cwiseMax(p[1]).cwiseMax(p[2]);
-    for (int ts = 0; ts < n_S; ++ts) {
-      if ((lo.array() > hi_S[ts].array()).any() || (hi.array() < lo_S[ts].array()).any()) continue;
-      Vector3 s[3];
-      pair.SceneTriangle(ts, s);
-      if (TrianglesIntersect(p[0], p[1], p[2], s[0], s[1], s[2])) return true;
-    }
-  }
-  return false;
+    pair.SceneTriangle(ts, s);
+    hit = TrianglesIntersect(p[0], p[1], p[2], s[0], s[1], s[2]);
+    return !hit;
+  });
+  return hit;
 }
 
 TEST(SurfacesIntersect, DeepConfigurationsOfRealMeshesFindACrossingAfterFewBoxTests) {
   PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
-  const Model P = LoadNormalised("cow.off"), S = LoadNormalised("knot1.off");
+  const Model P = test::LoadCentredModel(kMeshDir + "/cow.off"),
+              S = test::LoadCentredModel(kMeshDir + "/knot1.off");
   std::mt19937_64 rng(5);
   std::normal_distribution<double> g;
   ProximityCounters counters;

@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "pd_core/mesh/load_mesh.h"
 #include "pd_core/polydepth/support_plane_starts.h"
 #include "pd_core/proximity/box_overlap.h"
 #include "pd_core/proximity/bvh_pair_descent.h"
@@ -18,6 +17,7 @@
 #include "pd_core/proximity/model_pair.h"
 #include "pd_core/proximity/translational_ccd.h"
 #include "pd_core/proximity/triangle_geometry.h"
+#include "tests/pd_core/brute_force_pairs.h"
 #include "tests/prerequisites.h"
 
 namespace pd {
@@ -25,15 +25,6 @@ namespace {
 
 using Model = std::shared_ptr<const CollisionModel>;
 const std::string kMeshDir = PD_TEST_MESH_DIR;
-
-Model LoadNormalised(const std::string& name) {
-  TriangleMesh mesh = LoadMesh(kMeshDir + "/" + name).mesh;
-  const MeshBounds b = ComputeBounds(mesh);
-  double r = 0.0;
-  for (const Vector3& v : mesh.vertices) r = std::max(r, (v - b.center()).norm());
-  for (Vector3& v : mesh.vertices) v = 0.1 * (v - b.center()) / r;
-  return CollisionModel::Build(std::move(mesh));
-}
 
 // Earliest contact in [0, 1] of probe triangle tp (at offset_S + s sweep_S)
 // with scene triangle ts over all 6 vertex-face and 9 edge-edge events; 2
@@ -56,30 +47,15 @@ double TrianglePairContact(const ModelPair& pair, int tp, int ts, const Vector3&
   return best;
 }
 
-// Brute force: every triangle pair whose swept axis-aligned boxes overlap
-// (the probe triangle's box over the whole sweep), no BVH. -1 when free.
+// Brute force: every triangle pair whose swept boxes overlap, no BVH. -1
+// when free.
 double BruteForceFirstContact(const ModelPair& pair, const Vector3& offset_S,
                               const Vector3& sweep_S) {
-  const int n_P = pair.P.mesh().num_triangles(), n_S = pair.S.mesh().num_triangles();
-  std::vector<Vector3> lo_S(n_S), hi_S(n_S);
-  for (int ts = 0; ts < n_S; ++ts) {
-    Vector3 s[3];
-    pair.SceneTriangle(ts, s);
-    lo_S[ts] = s[0].cwiseMin(s[1]).cwiseMin(s[2]);
-    hi_S[ts] = s[0].cwiseMax(s[1]).cwiseMax(s[2]);
-  }
   double best = 2.0;
-  for (int tp = 0; tp < n_P; ++tp) {
-    Vector3 p[3];
-    pair.ProbeTriangle(tp, offset_S, p);
-    Vector3 lo = p[0].cwiseMin(p[1]).cwiseMin(p[2]), hi = p[0].cwiseMax(p[1]).cwiseMax(p[2]);
-    lo = lo.cwiseMin(lo + sweep_S).array() - 1e-12;
-    hi = hi.cwiseMax(hi + sweep_S).array() + 1e-12;
-    for (int ts = 0; ts < n_S; ++ts) {
-      if ((lo.array() > hi_S[ts].array()).any() || (hi.array() < lo_S[ts].array()).any()) continue;
-      best = std::min(best, TrianglePairContact(pair, tp, ts, offset_S, sweep_S));
-    }
-  }
+  test::ForEachOverlappingTrianglePair(pair, offset_S, sweep_S, [&](int tp, int ts) {
+    best = std::min(best, TrianglePairContact(pair, tp, ts, offset_S, sweep_S));
+    return true;
+  });
   return best <= 1.0 ? best : -1.0;
 }
 
@@ -127,7 +103,8 @@ Isometry3 CollidingPose(const Model& P, const Model& S, std::mt19937_64& rng) {
 TEST(TranslationalCcd, FirstContactEqualsBruteForceOverAllTrianglePairsOnRealMeshes) {
   PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
-  const Model P = LoadNormalised("cow.off"), S = LoadNormalised("knot1.off");
+  const Model P = test::LoadCentredModel(kMeshDir + "/cow.off"),
+              S = test::LoadCentredModel(kMeshDir + "/knot1.off");
   std::mt19937_64 rng(7);
   std::normal_distribution<double> g;
   int contacts = 0, sweeps = 0;
@@ -162,7 +139,8 @@ TEST(TranslationalCcd, FirstContactEqualsBruteForceOverAllTrianglePairsOnRealMes
 TEST(TranslationalCcd, BestFirstDescentFindsTheSameContactWithFewerBoxTestsOnLongSweeps) {
   PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(kMeshDir + "/camel.off", "run scripts/fetch_meshes.sh");
-  const Model P = LoadNormalised("knot1.off"), S = LoadNormalised("camel.off");
+  const Model P = test::LoadCentredModel(kMeshDir + "/knot1.off"),
+              S = test::LoadCentredModel(kMeshDir + "/camel.off");
   std::mt19937_64 rng(11);
   ProximityCounters depth_first, best_first;
   int sweeps = 0;
