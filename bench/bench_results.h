@@ -28,6 +28,7 @@ struct PdOutcome {
   double time_us = kNaN;      // result.time_us
   int iterations = 0, contacts = 0;
   int starts = 0;             // result.starts (cold starts out-projected)
+  double box_tests = 0, triangle_tests = 0;  // result.box_tests / triangle_tests (work)
   // Still free kHapticFreeMargin (2e-6) of the pair's size further along the
   // answer: verified free, not resting on a touching contact.
   bool free_beyond = false;

@@ -36,7 +36,7 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
          "ref_depth_m,ref_time_ms,ref_directions,ref_check_pd_free,ref_answer_free,pd_rel_error,"
          "fcl_convex_collide,fcl_convex_depth_m,fcl_convex_time_us,fcl_convex_rel_error,"
          "fcl_mesh_collide,fcl_mesh_depth_m,fcl_mesh_time_us,fcl_mesh_contacts,"
-         "fcl_mesh_rel_error\n";
+         "fcl_mesh_rel_error,pd_box_tests,pd_triangle_tests\n";
     for (const PairResult& p : run.pairs)
       for (const ScenarioResult& s : p.scenarios)
         for (const CaseRecord& r : s.cases) {
@@ -58,9 +58,10 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
               << Num(r.fcl.convex_time_us) << ',' << Num(RelativeError(r.fcl.convex_depth, ref))
               << ',' << r.fcl.mesh_collide << ',' << Num(r.fcl.mesh_depth) << ','
               << Num(r.fcl.mesh_time_us) << ',' << r.fcl.mesh_contacts << ','
-              << Num(RelativeError(r.fcl.mesh_depth, ref)) << '\n';
+              << Num(RelativeError(r.fcl.mesh_depth, ref)) << ',';
           else
-            f << ",,,,,,,,\n";
+            f << ",,,,,,,,,";
+          f << Num(r.pd.box_tests) << ',' << Num(r.pd.triangle_tests) << '\n';
         }
   }
   {

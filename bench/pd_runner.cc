@@ -15,6 +15,8 @@ PdOutcome Check(const BenchPair& pair, const Case& c, const pd::Isometry3& X_WS,
   o.time_us = r.time_us;
   o.iterations = r.iterations;
   o.starts = r.starts;
+  o.box_tests = static_cast<double>(r.box_tests);
+  o.triangle_tests = static_cast<double>(r.triangle_tests);
   o.contacts = r.num_contacts;
   o.initializer = pd::InitializerName(r.initializer);
   o.translation_W = r.translation_W;

@@ -53,7 +53,7 @@ double RelativeError(double depth, double ref) {
 
 ScenarioSummary Summarize(const ScenarioResult& s) {
   ScenarioSummary out;
-  std::vector<double> starts;
+  std::vector<double> starts, boxes, triangles;
   std::vector<double> times, iterations, contacts, errors, excess, ref_ms, ref_pd_us;
   int valid = 0, verified = 0, ref_free = 0;
   for (const CaseRecord& r : s.cases) {
@@ -62,6 +62,8 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
     times.push_back(r.pd.time_us);
     iterations.push_back(r.pd.iterations);
     starts.push_back(r.pd.starts);
+    boxes.push_back(r.pd.box_tests);
+    triangles.push_back(r.pd.triangle_tests);
     out.n_not_free_beyond += r.pd.verified_free && !r.pd.free_beyond;
     contacts.push_back(r.pd.contacts);
     valid += r.pd.valid;
@@ -85,6 +87,8 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
   out.mean_iterations = Mean(iterations);
   out.mean_contacts = Mean(contacts);
   out.mean_starts = Mean(starts);
+  out.mean_box_tests = Mean(boxes);
+  out.mean_triangle_tests = Mean(triangles);
   if (out.n > 0) {
     out.valid_rate = static_cast<double>(valid) / out.n;
     out.verified_rate = static_cast<double>(verified) / out.n;

@@ -22,6 +22,8 @@ struct ScenarioSummary {
   Summary time_us;
   double mean_iterations = kNaN, mean_contacts = kNaN;
   double mean_starts = kNaN;    // cold starts out-projected per query
+  // Work per query (deterministic, unlike times): box and triangle-pair tests.
+  double mean_box_tests = kNaN, mean_triangle_tests = kNaN;
   int n_not_free_beyond = 0;    // verified free but not kHapticFreeMargin further out
   double valid_rate = kNaN;     // result.valid
   double verified_rate = kNaN;  // pd::InCollision at the answer is false

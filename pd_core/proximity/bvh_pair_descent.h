@@ -2,21 +2,39 @@
 // The one simultaneous descent of a probe BVH and a scene BVH that every pair
 // query uses (collision, contact localisation, candidate lists, CCD). It is
 // parameterised by
-//   test(a, b, &key) -> bool   keep node pair (a, b)? key orders the children
+//   test(a, b, &key) -> bool   keep node pair (a, b)? key orders the visit
 //                              (lower first) and is handed back to `alive`;
+//                              on entry *key holds the parent pair's key (a
+//                              child can only be as early as its parent);
 //   alive(key) -> bool         is a popped pair still worth descending (CCD:
 //                              its earliest contact is before the best so far);
 //   on_leaf_pair(ip, is) -> bool   a surviving pair of leaves (node indices);
 //                              false stops the descent. It may take the
 //                              pair's key as a third argument.
-// Depth-first on an explicit stack: each step pops one pair and pushes at
-// most two, descending one side, so the stack never holds more than
-// depth_P + depth_S + 1 entries. A fixed array serves every BVH the builder
-// makes (median split: depth <= log2(n) + 2); deeper trees (hand-made or
-// loaded) get a heap stack of the right size instead of an overflow.
+// and an order (DescentOrder):
+//   kDepthFirst  an explicit stack; each step pops one pair and pushes at
+//                most two (one side split, the lower key on top), so the
+//                stack never holds more than depth_P + depth_S + 1 entries.
+//                A fixed array serves every BVH the builder makes (median
+//                split: depth <= log2(n) + 2); deeper trees (hand-made or
+//                loaded) get a heap stack of the right size instead of an
+//                overflow.
+//   kBestFirst   the pending pair of lowest key over the whole descent first
+//                (a binary heap on a fixed array). For a query that wants the
+//                lowest-keyed leaf result (CCD: the first contact) it expands
+//                only the pairs keyed below the answer, where depth-first also
+//                expands those a deep dive reaches before the answer is known.
+//                `alive` must be monotone (false for a key: false for every
+//                larger one): the descent ends at the first popped pair that
+//                is not alive. When the heap is full, a popped pair's subtree
+//                is descended depth-first instead (same pairs, other order).
+// Both orders visit the same leaf pairs when alive is always true, and give
+// a min-over-leaves query (CCD) the same answer.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "pd_core/proximity/bvh.h"
@@ -29,6 +47,8 @@ struct ProximityCounters {
   int64_t triangle_tests = 0;  // triangle-pair tests
 };
 
+enum class DescentOrder { kDepthFirst, kBestFirst };
+
 namespace internal {
 
 struct DescentEntry {
@@ -36,61 +56,150 @@ struct DescentEntry {
   double key;
 };
 
-template <typename Stack, typename NodeTest, typename Alive, typename LeafFn>
-void DescendWithStack(Stack& stack, const Bvh& bvh_P, const Bvh& bvh_S, NodeTest& test,
-                      Alive& alive, LeafFn& on_leaf_pair, ProximityCounters* counters) {
-  const auto& nodes_P = bvh_P.nodes();
-  const auto& nodes_S = bvh_S.nodes();
-  int64_t tests = 1;
-  double key = 0.0;
-  int top = 0;
-  if (test(nodes_P[0], nodes_S[0], &key)) stack[top++] = {0, 0, key};
-  while (top > 0) {
-    const DescentEntry e = stack[--top];
-    if (!alive(e.key)) continue;
+// The node pairs, the caller's functions and the box-test count of one descent.
+template <typename NodeTest, typename Alive, typename LeafFn>
+struct Descent {
+  const std::vector<BvhNode>& nodes_P;
+  const std::vector<BvhNode>& nodes_S;
+  NodeTest& test;
+  Alive& alive;
+  LeafFn& on_leaf_pair;
+  int64_t tests = 0;
+
+  bool IsLeafPair(const DescentEntry& e) const {
+    return nodes_P[e.ip].is_leaf() && nodes_S[e.is].is_leaf();
+  }
+  // The leaf action; false stops the descent.
+  bool Leaf(const DescentEntry& e) {
+    if constexpr (std::is_invocable_v<LeafFn&, int, int, double>)
+      return on_leaf_pair(e.ip, e.is, e.key);
+    else
+      return on_leaf_pair(e.ip, e.is);
+  }
+  // Splits the larger node of internal pair e (or the one that is not a
+  // leaf), tests both children against the other node and writes those
+  // kept to child[]; returns how many. Of two, child[1] is to be visited
+  // first: the lower key, the second child on a tie.
+  int Expand(const DescentEntry& e, DescentEntry child[2]) {
     const BvhNode& a = nodes_P[e.ip];
     const BvhNode& b = nodes_S[e.is];
-    if (a.is_leaf() && b.is_leaf()) {
-      bool go_on;
-      if constexpr (std::is_invocable_v<LeafFn&, int, int, double>)
-        go_on = on_leaf_pair(e.ip, e.is, e.key);
-      else
-        go_on = on_leaf_pair(e.ip, e.is);
-      if (!go_on) break;
-      continue;
-    }
     const bool split_P = b.is_leaf() || (!a.is_leaf() && NodeSize2(a) >= NodeSize2(b));
-    DescentEntry child[2];
     int n = 0;
     for (int c = 0; c < 2; ++c) {
       const int32_t ip = split_P ? (c == 0 ? e.ip + 1 : a.right_or_first) : e.ip;
       const int32_t is = split_P ? e.is : (c == 0 ? e.is + 1 : b.right_or_first);
       ++tests;
+      double key = e.key;
       if (test(nodes_P[ip], nodes_S[is], &key)) child[n++] = {ip, is, key};
     }
-    // Lower key on top of the stack: visited first.
     if (n == 2 && child[0].key < child[1].key) std::swap(child[0], child[1]);
-    for (int c = 0; c < n; ++c) stack[top++] = child[c];
+    return n;
   }
-  if (counters) counters->box_tests += tests;
-}
+  // Depth-first below `root` (a kept pair) on `stack`, which holds at least
+  // the depth of the subtree pairs; false if the leaf action stopped it.
+  template <typename Stack>
+  bool DepthFirst(Stack& stack, const DescentEntry& root) {
+    int top = 0;
+    stack[top++] = root;
+    while (top > 0) {
+      const DescentEntry e = stack[--top];
+      if (!alive(e.key)) continue;
+      if (IsLeafPair(e)) {
+        if (!Leaf(e)) return false;
+        continue;
+      }
+      DescentEntry child[2];
+      const int n = Expand(e, child);
+      for (int c = 0; c < n; ++c) stack[top++] = child[c];  // child[1] on top
+    }
+    return true;
+  }
+  // Best-first from `root` on a binary min-heap of the fixed array `heap`,
+  // with `stack` for the depth-first fallback when the heap is full.
+  template <size_t kHeap, typename Stack>
+  void BestFirst(std::array<DescentEntry, kHeap>& heap, Stack& stack, const DescentEntry& root) {
+    size_t size = 0;
+    auto push = [&](const DescentEntry& x) {
+      size_t i = size++;
+      while (i > 0) {
+        const size_t parent = (i - 1) / 2;
+        if (!(x.key < heap[parent].key)) break;
+        heap[i] = heap[parent];
+        i = parent;
+      }
+      heap[i] = x;
+    };
+    auto pop = [&] {
+      const DescentEntry top = heap[0];
+      const DescentEntry last = heap[--size];
+      size_t i = 0;
+      for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= size) break;
+        if (c + 1 < size && heap[c + 1].key < heap[c].key) ++c;
+        if (!(heap[c].key < last.key)) break;
+        heap[i] = heap[c];
+        i = c;
+      }
+      if (size > 0) heap[i] = last;
+      return top;
+    };
+    push(root);
+    while (size > 0) {
+      const DescentEntry e = pop();
+      if (!alive(e.key)) return;  // monotone: every pending pair is later
+      if (IsLeafPair(e)) {
+        if (!Leaf(e)) return;
+        continue;
+      }
+      if (size + 2 > kHeap) {
+        if (!DepthFirst(stack, e)) return;
+        continue;
+      }
+      DescentEntry child[2];
+      const int n = Expand(e, child);
+      for (int c = 0; c < n; ++c) push(child[c]);
+    }
+  }
+};
 
 }  // namespace internal
 
 inline constexpr int kDescentStackCapacity = 192;
+// Pending pairs a best-first descent holds before it falls back to
+// depth-first for a popped pair's subtree (16 bytes each, on the stack).
+inline constexpr int kBestFirstHeapCapacity = 1024;
 
-template <typename NodeTest, typename Alive, typename LeafFn>
+template <DescentOrder kOrder = DescentOrder::kDepthFirst, typename NodeTest, typename Alive,
+          typename LeafFn>
 void DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&& alive,
                     LeafFn&& on_leaf_pair, ProximityCounters* counters = nullptr) {
   if (bvh_P.empty() || bvh_S.empty()) return;
-  const int needed = bvh_P.depth() + bvh_S.depth() + 1;
-  if (needed <= kDescentStackCapacity) {
-    std::array<internal::DescentEntry, kDescentStackCapacity> stack;
-    internal::DescendWithStack(stack, bvh_P, bvh_S, test, alive, on_leaf_pair, counters);
-  } else {
-    std::vector<internal::DescentEntry> stack(needed);
-    internal::DescendWithStack(stack, bvh_P, bvh_S, test, alive, on_leaf_pair, counters);
+  internal::Descent<std::remove_reference_t<NodeTest>, std::remove_reference_t<Alive>,
+                    std::remove_reference_t<LeafFn>>
+      d{bvh_P.nodes(), bvh_S.nodes(), test, alive, on_leaf_pair};
+  d.tests = 1;
+  // The root's parent key: the lowest there is.
+  internal::DescentEntry root{0, 0, -std::numeric_limits<double>::infinity()};
+  if (test(d.nodes_P[0], d.nodes_S[0], &root.key)) {
+    auto run = [&](auto& stack) {
+      if constexpr (kOrder == DescentOrder::kBestFirst) {
+        std::array<internal::DescentEntry, kBestFirstHeapCapacity> heap;
+        d.BestFirst(heap, stack, root);
+      } else {
+        d.DepthFirst(stack, root);
+      }
+    };
+    const int needed = bvh_P.depth() + bvh_S.depth() + 1;
+    if (needed <= kDescentStackCapacity) {
+      std::array<internal::DescentEntry, kDescentStackCapacity> stack;
+      run(stack);
+    } else {
+      std::vector<internal::DescentEntry> stack(needed);
+      run(stack);
+    }
   }
+  if (counters) counters->box_tests += d.tests;
 }
 
 // Calls fn(tp, ts) for every triangle pair of leaf nodes ip (probe) and is

@@ -18,6 +18,7 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
                          double distance, NodeTest&& may_touch, LeafFn&& on_leaf_pair) {
   const CandidatePairs* list = pair.candidates;
   if (list != nullptr) {
+    double unused_key;
     const double displacement =
         std::max(list->Displacement(pair, q_a_S), list->Displacement(pair, q_b_S));
     if (displacement + distance < list->radius()) {
@@ -28,7 +29,12 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
       if (pair.counters) pair.counters->box_tests += n;
       for (int k = 0; k < n; ++k) {
         const CandidatePairs::Entry& e = entries[k];
-        if (!may_touch(nodes_P[e.ip], nodes_S[e.is])) continue;
+        bool touch;
+        if constexpr (std::is_invocable_v<NodeTest&, const BvhNode&, const BvhNode&, double*>)
+          touch = may_touch(nodes_P[e.ip], nodes_S[e.is], &unused_key);
+        else
+          touch = may_touch(nodes_P[e.ip], nodes_S[e.is]);
+        if (!touch) continue;
         if (!on_leaf_pair(e.ip, e.is)) return;
       }
       return;
@@ -36,7 +42,12 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
   }
   DescendBvhPair(
       pair.P.bvh(), pair.S.bvh(),
-      [&](const BvhNode& a, const BvhNode& b, double*) { return may_touch(a, b); },
+      [&](const BvhNode& a, const BvhNode& b, double* key) {
+        if constexpr (std::is_invocable_v<NodeTest&, const BvhNode&, const BvhNode&, double*>)
+          return may_touch(a, b, key);
+        else
+          return may_touch(a, b);
+      },
       [](double) { return true; }, on_leaf_pair, pair.counters);
 }
 

@@ -88,9 +88,10 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
     if (covered >= 1.0) return -1.0;
     s_best = 1.0;
   }
-  // Nearer-in-time node pairs first; a pair whose earliest possible contact
-  // is later than the best contact so far is dropped when popped.
-  DescendBvhPair(
+  // Earliest possible contact first over all pending node pairs: the first
+  // contact is found expanding only pairs that may touch before it, and the
+  // descent ends once the earliest pending pair is later than it.
+  DescendBvhPair<DescentOrder::kBestFirst>(
       bvh_P, bvh_S,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
         if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi))

@@ -1,7 +1,8 @@
 // The one BVH pair descent (pd_core/proximity/bvh_pair_descent.h): it visits exactly
 // the leaf pairs a brute-force sweep keeps, in any tree shape, including
 // trees deeper than its fixed stack (which once overflowed silently), and
-// depth is measured from the links, not trusted.
+// depth is measured from the links, not trusted. Best-first order visits the
+// same pairs, lowest key first, also when its fixed heap fills up.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -97,6 +98,102 @@ TEST(BvhPairDescent, KeysOrderTheVisitAndAliveDropsPairsWhenPopped) {
         return false;  // stop the descent
       });
   ASSERT_EQ(visited.size(), 1u);
+}
+
+// A complete binary tree over 2^levels unit leaves spaced `spacing` apart
+// along x (spacing 0: all in one place). Axis-aligned boxes.
+Bvh Balanced(int levels, double spacing) {
+  std::vector<BvhNode> nodes;
+  std::vector<int32_t> order;
+  auto build = [&](auto& self, int first, int count) -> void {
+    const int index = static_cast<int>(nodes.size());
+    nodes.emplace_back();
+    BvhNode& n = nodes.back();
+    n.R_MB = Matrix3::Identity();
+    const double lo = first * spacing - 0.4, hi = (first + count - 1) * spacing + 0.4;
+    n.center_M = Vector3(0.5 * (lo + hi), 0, 0);
+    n.half_B = Vector3(0.5 * (hi - lo), 0.4, 0.4);
+    if (count == 1) {
+      n.right_or_first = static_cast<int32_t>(order.size());
+      n.count = 1;
+      order.push_back(first);
+      return;
+    }
+    self(self, first, count / 2);
+    nodes[index].right_or_first = static_cast<int32_t>(nodes.size());
+    self(self, first + count / 2, count - count / 2);
+  };
+  build(build, 0, 1 << levels);
+  return Bvh::FromNodes(std::move(nodes), std::move(order));
+}
+
+// Leaf pairs visited in order, with their keys.
+template <DescentOrder kOrder>
+std::vector<std::pair<std::pair<int, int>, double>> Visit(const Bvh& a, const Bvh& b,
+                                                          ProximityCounters* counters) {
+  std::vector<std::pair<std::pair<int, int>, double>> visited;
+  DescendBvhPair<kOrder>(
+      a, b,
+      [](const BvhNode& x, const BvhNode& y, double* key) {
+        // A key no lower than the parent's: the node pair's distance from x = 5.
+        *key = std::max(*key, std::abs(x.center_M.x() - 5.0) - x.half_B.x() +
+                                  std::abs(y.center_M.x() - 5.0) - y.half_B.x());
+        return Overlap(x, y);
+      },
+      [](double) { return true; },
+      [&](int ip, int is, double key) {
+        visited.push_back({{ip, is}, key});
+        return true;
+      },
+      counters);
+  return visited;
+}
+
+TEST(BvhPairDescent, BestFirstVisitsTheSameLeafPairsLowestKeyFirst) {
+  for (const auto& [a, b] : {std::pair(Caterpillar(300, 0.0), Caterpillar(300, 0.5)),
+                             std::pair(Balanced(6, 1.0), Balanced(6, 0.7)),
+                             // 64 x 64 leaf pairs all overlapping: more pending pairs than
+                             // the heap holds, the depth-first fallback runs.
+                             std::pair(Balanced(6, 0.0), Balanced(6, 0.0))}) {
+    ProximityCounters df_count, bf_count;
+    const auto df = Visit<DescentOrder::kDepthFirst>(a, b, &df_count);
+    const auto bf = Visit<DescentOrder::kBestFirst>(a, b, &bf_count);
+    std::set<std::pair<int, int>> df_pairs, bf_pairs;
+    for (const auto& v : df) EXPECT_TRUE(df_pairs.insert(v.first).second);
+    for (const auto& v : bf) EXPECT_TRUE(bf_pairs.insert(v.first).second) << "visited twice";
+    EXPECT_FALSE(bf_pairs.empty());
+    EXPECT_EQ(bf_pairs, df_pairs);
+    EXPECT_EQ(bf_count.box_tests, df_count.box_tests);  // alive always true: same expansions
+    if (bf.size() < static_cast<size_t>(kBestFirstHeapCapacity)) {
+      for (size_t i = 1; i < bf.size(); ++i) EXPECT_LE(bf[i - 1].second, bf[i].second) << i;
+    }
+  }
+  EXPECT_EQ(Visit<DescentOrder::kBestFirst>(Balanced(6, 0.0), Balanced(6, 0.0), nullptr).size(),
+            4096u);
+}
+
+TEST(BvhPairDescent, BestFirstEndsAtTheFirstPairNotAlive) {
+  const Bvh a = Balanced(6, 1.0), b = Balanced(6, 1.0);
+  // Keys: distance from x = 20; alive below 3: only pairs near x = 20 are visited.
+  std::vector<double> keys;
+  ProximityCounters all, limited;
+  DescendBvhPair<DescentOrder::kBestFirst>(
+      a, b,
+      [](const BvhNode& x, const BvhNode& y, double* key) {
+        *key = std::max(*key, std::abs(x.center_M.x() - 20.0) - x.half_B.x());
+        return Overlap(x, y);
+      },
+      [](double key) { return key < 3.0; },
+      [&](int, int, double key) {
+        keys.push_back(key);
+        return true;
+      },
+      &limited);
+  Visit<DescentOrder::kBestFirst>(a, b, &all);
+  ASSERT_FALSE(keys.empty());
+  for (double k : keys) EXPECT_LT(k, 3.0);
+  EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
+  EXPECT_LT(limited.box_tests, all.box_tests / 4);
 }
 
 }  // namespace

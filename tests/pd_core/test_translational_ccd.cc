@@ -1,0 +1,172 @@
+// Translational CCD (pd_core/proximity/translational_ccd.h) on real meshes:
+// its first contact equals a brute force over all triangle pairs (no BVH),
+// and the best-first order of the shared descent finds the same contact
+// with fewer box tests than depth-first on long sweeps.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "pd_core/polydepth/support_plane_starts.h"
+#include "pd_core/proximity/box_overlap.h"
+#include "pd_core/proximity/bvh_pair_descent.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/model_pair.h"
+#include "pd_core/proximity/translational_ccd.h"
+#include "pd_core/proximity/triangle_geometry.h"
+#include "tests/pd_core/brute_force_pairs.h"
+#include "tests/prerequisites.h"
+
+namespace pd {
+namespace {
+
+using Model = std::shared_ptr<const CollisionModel>;
+const std::string kMeshDir = PD_TEST_MESH_DIR;
+
+// Earliest contact in [0, 1] of probe triangle tp (at offset_S + s sweep_S)
+// with scene triangle ts over all 6 vertex-face and 9 edge-edge events; 2
+// when none.
+double TrianglePairContact(const ModelPair& pair, int tp, int ts, const Vector3& offset_S,
+                           const Vector3& sweep_S) {
+  Vector3 p[3], s[3];
+  pair.ProbeTriangle(tp, offset_S, p);
+  pair.SceneTriangle(ts, s);
+  double best = 2.0;
+  auto take = [&](double t) {
+    if (t >= 0.0 && t <= 1.0) best = std::min(best, t);
+  };
+  for (int k = 0; k < 3; ++k) {
+    take(RayTriangle(p[k], sweep_S, s[0], s[1], s[2], 1.0));
+    take(RayTriangle(s[k], -sweep_S, p[0], p[1], p[2], 1.0));
+    for (int j = 0; j < 3; ++j)
+      take(EdgeEdgeTranslationalContact(p[k], p[(k + 1) % 3], s[j], s[(j + 1) % 3], sweep_S, 1.0));
+  }
+  return best;
+}
+
+// Brute force: every triangle pair whose swept boxes overlap, no BVH. -1
+// when free.
+double BruteForceFirstContact(const ModelPair& pair, const Vector3& offset_S,
+                              const Vector3& sweep_S) {
+  double best = 2.0;
+  test::ForEachOverlappingTrianglePair(pair, offset_S, sweep_S, [&](int tp, int ts) {
+    best = std::min(best, TrianglePairContact(pair, tp, ts, offset_S, sweep_S));
+    return true;
+  });
+  return best <= 1.0 ? best : -1.0;
+}
+
+// The CCD's descent written out with a chosen order: swept-box intervals as
+// keys, pairs later than the best contact dropped, leaf triangle pairs by
+// TrianglePairContact. Returns the first contact (-1 when free).
+template <DescentOrder kOrder>
+double DescentFirstContact(const ModelPair& pair, const Vector3& offset_S, const Vector3& sweep_S,
+                           ProximityCounters* counters) {
+  double s_best = 1.0;
+  bool hit = false;
+  ProbeBoxMemo probe_box(pair.X_SP, offset_S);
+  DescendBvhPair<kOrder>(
+      pair.P.bvh(), pair.S.bvh(),
+      [&](const BvhNode& a, const BvhNode& b, double* key) {
+        double hi;
+        return SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, key, &hi);
+      },
+      [&](double lo) { return lo <= s_best; },
+      [&](int ip, int is) {
+        return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
+          const double t = TrianglePairContact(pair, tp, ts, offset_S, sweep_S);
+          if (t <= s_best) s_best = t, hit = true;
+          return true;
+        });
+      },
+      counters);
+  return hit ? s_best : -1.0;
+}
+
+// A colliding pose of the probe against the scene (random orientation,
+// centre 0.1-0.6 scene radii from the scene's).
+Isometry3 CollidingPose(const Model& P, const Model& S, std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> frac(0.1, 0.6);
+  for (;;) {
+    Isometry3 X = Isometry3::Identity();
+    X.linear() = Quaternion(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+    const Vector3 u = Vector3(g(rng), g(rng), g(rng)).normalized();
+    X.translation() = S->center() + frac(rng) * S->radius() * u - X.linear() * P->center();
+    if (InCollision(ModelPair(*P, *S, X, Isometry3::Identity()), Vector3::Zero())) return X;
+  }
+}
+
+TEST(TranslationalCcd, FirstContactEqualsBruteForceOverAllTrianglePairsOnRealMeshes) {
+  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
+  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
+  const Model P = test::LoadCentredModel(kMeshDir + "/cow.off"),
+              S = test::LoadCentredModel(kMeshDir + "/knot1.off");
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> g;
+  int contacts = 0, sweeps = 0;
+  for (int k = 0; k < 4; ++k) {
+    const ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    // Out-projections as PolyDepth makes them: a free support-plane start
+    // toward the query; and a short sweep from there in a random direction
+    // (mostly free).
+    for (int i : {0, 5}) {
+      const Vector3 from = starts[i].q_S;
+      ASSERT_FALSE(InCollision(pair, from));
+      const Vector3 u = Vector3(g(rng), g(rng), g(rng)).normalized();
+      for (const Vector3& sweep : {Vector3(-from), Vector3(0.05 * from.norm() * u)}) {
+        const double s = FirstContactAlongTranslation(pair, from, sweep);
+        const double brute = BruteForceFirstContact(pair, from, sweep);
+        ++sweeps;
+        if (brute < 0) {
+          EXPECT_LT(s, 0) << "pose " << k << " start " << i << ": CCD found a contact brute force did not";
+          continue;
+        }
+        ++contacts;
+        EXPECT_NEAR(s, brute, 1e-12) << "pose " << k << " start " << i;
+      }
+    }
+  }
+  EXPECT_EQ(sweeps, 16);
+  EXPECT_GE(contacts, 8);  // every start-to-query sweep touches
+}
+
+TEST(TranslationalCcd, BestFirstDescentFindsTheSameContactWithFewerBoxTestsOnLongSweeps) {
+  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
+  PD_REQUIRE_FILE(kMeshDir + "/camel.off", "run scripts/fetch_meshes.sh");
+  const Model P = test::LoadCentredModel(kMeshDir + "/knot1.off"),
+              S = test::LoadCentredModel(kMeshDir + "/camel.off");
+  std::mt19937_64 rng(11);
+  ProximityCounters depth_first, best_first;
+  int sweeps = 0;
+  for (int k = 0; k < 6; ++k) {
+    const ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    for (int i = 0; i < 8; ++i) {
+      // Long sweeps: from a maximally clear start all the way to the query.
+      const Vector3 from = starts[i].q_S, sweep = -from;
+      const double s_df = DescentFirstContact<DescentOrder::kDepthFirst>(pair, from, sweep,
+                                                                         &depth_first);
+      const double s_bf = DescentFirstContact<DescentOrder::kBestFirst>(pair, from, sweep,
+                                                                        &best_first);
+      EXPECT_EQ(s_df, s_bf) << "pose " << k << " start " << i;
+      EXPECT_GT(s_bf, 0.0);
+      // The library's CCD is the best-first descent.
+      EXPECT_NEAR(FirstContactAlongTranslation(pair, from, sweep), s_bf, 1e-12);
+      ++sweeps;
+    }
+  }
+  ASSERT_EQ(sweeps, 48);
+  // Measured: 0.62 of depth-first's box tests (45.9k vs 74.3k).
+  EXPECT_LT(best_first.box_tests, 0.8 * depth_first.box_tests)
+      << "best-first " << best_first.box_tests << " vs depth-first " << depth_first.box_tests;
+}
+
+}  // namespace
+}  // namespace pd
