@@ -12,7 +12,7 @@ namespace pd {
 namespace {
 
 // The largest gap between the boxes along one of the candidate axes (the
-// six face normals and the centres' direction), with that axis signed to
+// 15 separating axes of two boxes and the centres' direction), with that axis signed to
 // point from box b to box a. The gap along any fixed axis is a lower bound
 // on the contents' distance that changes by exactly the motion's component
 // along it.
@@ -31,6 +31,12 @@ double BestFaceAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S) 
   };
   for (int i = 0; i < 3; ++i) try_axis(b.R_MB.col(i));
   for (int j = 0; j < 3; ++j) try_axis(a.R_SA.col(j));
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const Vector3 u = b.R_MB.col(i).cross(a.R_SA.col(j));
+      if (u.squaredNorm() > 1e-12) try_axis(u.normalized());
+    }
+  }
   if (c.norm() > 0.0) try_axis(c.normalized());
   return best;
 }
