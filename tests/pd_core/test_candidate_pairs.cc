@@ -74,55 +74,54 @@ TrianglePairs PairsWithin(const ModelPair& pair, const Vector3& q_S, double dist
 }
 
 // A pose of bench_pd's fandisk_elephant haptic path (pose 1200: the tool
-// resting on the object, 2 mm deep), tool and object scaled as there.
-struct FandiskOnElephant {
-  std::shared_ptr<const CollisionModel> tool =
-      LoadScaled("fandisk.off", 0.034431803204303821);
-  std::shared_ptr<const CollisionModel> object =
-      LoadScaled("refined_elephant.off", 0.12763984046501484);
-  Isometry3 Pose(const Vector3& p, double turn_rad, const Vector3& axis) const {
-    Isometry3 X = Isometry3::Identity();
-    X.linear() = (Eigen::AngleAxisd(turn_rad, axis.normalized()) *
-                  Quaternion(0.74771591051074504, 0.20407979086249584, 0.56654559954783568,
-                             -0.27981858366375667).normalized())
-                     .toRotationMatrix();
-    X.translation() = Vector3(-0.021064379799368926, 0.012639199578282974,
-                              -0.01414136732652058) + p;
-    return X;
+// 2 mm deep in the object), tool and object scaled as there; lists of the
+// radius and queries of the distance PolyDepth uses (3.6e-3 and 1e-4 of the
+// pair's size).
+class CandidatePairsFandiskOnElephant : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    for (const char* f : {"fandisk.off", "refined_elephant.off"})
+      PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
+    tool = LoadScaled("fandisk.off", 0.034431803204303821);
+    object = LoadScaled("refined_elephant.off", 0.12763984046501484);
+    const double size = PairAt(Vector3::Zero(), 0.0, Vector3::UnitZ()).size();
+    radius = 3.6e-3 * size;
+    distance = 1e-4 * size;
   }
+  // The pose moved by p_W and turned by turn_rad about axis_W.
+  ModelPair PairAt(const Vector3& p_W, double turn_rad, const Vector3& axis_W) const {
+    Isometry3 X_WP = Isometry3::Identity();
+    X_WP.linear() = (Eigen::AngleAxisd(turn_rad, axis_W.normalized()) *
+                     Quaternion(0.74771591051074504, 0.20407979086249584, 0.56654559954783568,
+                                -0.27981858366375667).normalized())
+                        .toRotationMatrix();
+    X_WP.translation() =
+        Vector3(-0.021064379799368926, 0.012639199578282974, -0.01414136732652058) + p_W;
+    return ModelPair(*tool, *object, X_WP, Isometry3::Identity());
+  }
+  std::shared_ptr<const CollisionModel> tool, object;
+  double radius = 0.0, distance = 0.0;
 };
 
-void RequireMeshes() {
-  for (const char* f : {"fandisk.off", "refined_elephant.off"})
-    PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
-}
-
-TEST(CandidatePairs, ListWalkReachesEveryTrianglePairADescentReachesAfterMotion) {
-  RequireMeshes();
-  const FandiskOnElephant m;
-  const Isometry3 X_WS = Isometry3::Identity();
-  ModelPair built(*m.tool, *m.object, m.Pose(Vector3::Zero(), 0.0, Vector3::UnitZ()), X_WS);
-  const double size = built.size();
-  // The answer of that pose is ~2 mm out along the object's normal there:
-  // build around a configuration just touching, as PolyDepth does.
-  const double radius = 3.6e-3 * size, distance = 1e-4 * size;
+TEST_F(CandidatePairsFandiskOnElephant, ListWalkReachesEveryTrianglePairADescentReachesAfterMotion) {
+  const ModelPair built = PairAt(Vector3::Zero(), 0.0, Vector3::UnitZ());
   std::mt19937_64 rng(7);
   std::normal_distribution<double> g;
   auto unit = [&] { return Vector3(g(rng), g(rng), g(rng)).normalized(); };
   int compared = 0, nonempty = 0;
   for (int trial = 0; trial < 6; ++trial) {
-    // Around configurations where the surfaces meet or nearly do (the pose
-    // is 2 mm deep: offsets of up to 3 mm in any direction).
-    const Vector3 q_build_S = 3e-3 * std::uniform_real_distribution<double>(0.0, 1.0)(rng) * unit();
+    // Around configurations where the surfaces meet or nearly do (offsets
+    // of up to 3 mm in any direction from the pose 2 mm deep).
+    const Vector3 q_build_S =
+        3e-3 * std::uniform_real_distribution<double>(0.0, 1.0)(rng) * unit();
     CandidatePairs list;
     list.Build(built, q_build_S, radius);
     if (list.entries().empty()) continue;
     for (int k = 0; k < 40; ++k) {
-      // Moved and turned since the build: a pose's own motion and an extra
-      // translation q_S, together inside the list's reach.
+      // Moved and turned since the build: the pose's own motion and an
+      // extra translation q_S, together inside the list's reach.
       const double turn = 1e-3 * g(rng);
-      ModelPair pair(*m.tool, *m.object,
-                     m.Pose(0.25 * radius * unit(), turn, unit()), X_WS);
+      ModelPair pair = PairAt(0.25 * radius * unit(), turn, unit());
       const Vector3 q_S = q_build_S + 0.3 * radius * unit();
       pair.candidates = &list;
       if (list.Displacement(pair, q_S) + distance >= list.radius()) continue;
@@ -139,16 +138,11 @@ TEST(CandidatePairs, ListWalkReachesEveryTrianglePairADescentReachesAfterMotion)
   EXPECT_GE(nonempty, 30);
 }
 
-TEST(CandidatePairs, SeparatingAxesSpareMostBoxTestsOfAWalkAfterMotion) {
-  RequireMeshes();
-  const FandiskOnElephant m;
-  const Isometry3 X_WS = Isometry3::Identity();
-  ModelPair pair(*m.tool, *m.object, m.Pose(Vector3::Zero(), 0.0, Vector3::UnitZ()), X_WS);
-  const double size = pair.size();
-  const double radius = 3.6e-3 * size, distance = 1e-4 * size;
+TEST_F(CandidatePairsFandiskOnElephant, SeparatingAxesSpareMostBoxTestsOfAWalkAfterMotion) {
   // Built at the pose itself, where the surfaces cross along a long curve;
   // then walked at configurations moved by half the list's reach (two to
   // three ticks of the benchmark's paths), in fixed random directions.
+  ModelPair pair = PairAt(Vector3::Zero(), 0.0, Vector3::UnitZ());
   CandidatePairs list;
   list.Build(pair, Vector3::Zero(), radius);
   ProximityCounters counters;
