@@ -12,11 +12,11 @@ namespace pd {
 namespace {
 
 // The largest gap between the boxes along one of the candidate axes (the
-// 15 separating axes of two boxes and the centres' direction), with that axis signed to
-// point from box b to box a. The gap along any fixed axis is a lower bound
-// on the contents' distance that changes by exactly the motion's component
-// along it.
-double BestFaceAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S) {
+// 15 separating axes of two boxes and the centres' direction), with that
+// axis signed to point from box b to box a. The gap along a fixed axis is a
+// lower bound on the contents' distance that a later motion changes by its
+// component along the axis (plus the rotation's share).
+double BestSeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S) {
   const Vector3 c = a.p_SA - b.center_M;
   double best = -std::numeric_limits<double>::infinity();
   auto try_axis = [&](const Vector3& u) {
@@ -68,8 +68,8 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
   const auto& nodes_P = pair.P.bvh().nodes();
   const auto& nodes_S = pair.S.bvh().nodes();
   for (Entry& e : entries_) {
-    e.axis_gap = BestFaceAxisGap(ProbeBox(nodes_P[e.ip], pair.X_SP, q_center_S), nodes_S[e.is],
-                                 &e.axis_S);
+    e.axis_gap = BestSeparatingAxisGap(ProbeBox(nodes_P[e.ip], pair.X_SP, q_center_S),
+                                       nodes_S[e.is], &e.axis_S);
   }
   if (pair.counters) pair.counters->box_tests += static_cast<int64_t>(entries_.size());
   std::sort(entries_.begin(), entries_.end(),
