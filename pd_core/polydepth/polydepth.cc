@@ -39,6 +39,12 @@ constexpr double kReanchorGrowth = 1.5;
 constexpr double kReanchorFloor = 5e-3;
 // A list built while sliding is centred this fraction of its radius ahead.
 constexpr double kListLead = 0.6;
+// A list reaches as far as this many queries of the current motion (a fast
+// slide rebuilt it every other query: those rebuilds set the median), at
+// least candidate_radius and at most this many times it (a rebuild's cost
+// grows with the square of the reach on a flat patch).
+constexpr double kListTicks = 3.0;
+constexpr double kListMaxReach = 2.0;
 // No list is built for a query that would need it wider than this many
 // times its usual radius.
 constexpr double kListMaxNeed = 2.0;
@@ -287,10 +293,11 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       // Sliding: centre the new list ahead along the motion, where the
       // coming queries will be, so it lasts longer than one centred here.
       const Vector3 v = pair.X_SP.p_SP - s.previous_X_SP.p_SP;
-      const double lead =
-          have_prediction && v.norm() > 0.0 ? kListLead * options_.candidate_radius * size : 0.0;
+      const double reach = std::clamp(kListTicks * motion, options_.candidate_radius * size,
+                                      kListMaxReach * options_.candidate_radius * size);
+      const double lead = have_prediction && v.norm() > 0.0 ? kListLead * reach : 0.0;
       const Vector3 build_center = lead > 0.0 ? Vector3(center + lead * v.normalized()) : center;
-      s.candidates.Build(pair, build_center, options_.candidate_radius * size + need);
+      s.candidates.Build(pair, build_center, reach + need);
     }
   }
 

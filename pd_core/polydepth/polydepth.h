@@ -63,6 +63,8 @@ struct PolyDepthOptions {
   // Warm-started queries keep a list of the leaf pairs within this distance
   // of the previous contact and reuse it while the probe stays inside that
   // budget (fraction of size). Larger: rebuilt less often, longer to walk.
+  // A fast slide widens it to about three queries of its motion, up to
+  // twice this.
   double candidate_radius = 3e-3;
   // Bounded time for real-time callers: after this much work (box plus
   // triangle tests; 0 = unbounded) or wall time (us; 0 = unbounded), Solve

@@ -9,6 +9,40 @@
 
 namespace pd {
 
+namespace {
+
+// The largest gap between the boxes along one of the candidate axes (the
+// 15 separating axes of two boxes and the centres' direction), with that
+// axis signed to point from box b to box a. The gap along a fixed axis is a
+// lower bound on the contents' distance that a later motion changes by its
+// component along the axis (plus the rotation's share).
+double BestSeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S) {
+  const Vector3 c = a.p_SA - b.center_M;
+  double best = -std::numeric_limits<double>::infinity();
+  auto try_axis = [&](const Vector3& u) {
+    const double along = c.dot(u);
+    const double reach = (a.R_SA.transpose() * u).cwiseAbs().dot(*a.half_A) +
+                         (b.R_MB.transpose() * u).cwiseAbs().dot(b.half_B);
+    const double gap = std::abs(along) - reach;
+    if (gap > best) {
+      best = gap;
+      *axis_S = along >= 0.0 ? u : Vector3(-u);
+    }
+  };
+  for (int i = 0; i < 3; ++i) try_axis(b.R_MB.col(i));
+  for (int j = 0; j < 3; ++j) try_axis(a.R_SA.col(j));
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const Vector3 u = b.R_MB.col(i).cross(a.R_SA.col(j));
+      if (u.squaredNorm() > 1e-12) try_axis(u.normalized());
+    }
+  }
+  if (c.norm() > 0.0) try_axis(c.normalized());
+  return best;
+}
+
+}  // namespace
+
 void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, double radius) {
   entries_.clear();
   X_SP_ = pair.X_SP;
@@ -26,10 +60,18 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
       },
       [](double) { return true; },
       [&](int ip, int is, double gap) {
-        entries_.push_back({ip, is, gap});  // the node test's full bound (it passed)
+        entries_.push_back({ip, is, gap, Vector3::Zero(), 0.0});  // the node test's full bound
         return true;
       },
       pair.counters);
+  // Each entry's separating direction: one more box computation per entry.
+  const auto& nodes_P = pair.P.bvh().nodes();
+  const auto& nodes_S = pair.S.bvh().nodes();
+  for (Entry& e : entries_) {
+    e.axis_gap = BestSeparatingAxisGap(ProbeBox(nodes_P[e.ip], pair.X_SP, q_center_S),
+                                       nodes_S[e.is], &e.axis_S);
+  }
+  if (pair.counters) pair.counters->box_tests += static_cast<int64_t>(entries_.size());
   std::sort(entries_.begin(), entries_.end(),
             [](const Entry& x, const Entry& y) { return x.gap < y.gap; });
 }
@@ -48,6 +90,14 @@ void CandidatePairs::Motion(const ModelPair& pair, double* rotation_bound,
   const Vector3& c_P = pair.P.center();
   *rotation_bound = RotationAngleBetween(X_SP_.R_SP, pair.X_SP.R_SP) * pair.P.radius();
   *center_shift_S = (pair.X_SP * c_P) - (X_SP_ * c_P + q_center_S_);
+}
+
+bool CandidatePairs::MotionSinceBuild(const ModelPair& pair, const Vector3& q_S,
+                                      Vector3* shift_S, double* rotation_bound) const {
+  if (!valid_ || probe_ != &pair.P || scene_ != &pair.S) return false;
+  Motion(pair, rotation_bound, shift_S);
+  *shift_S += q_S;
+  return true;
 }
 
 double CandidatePairs::Displacement(const ModelPair& pair, const Vector3& q_S) const {

@@ -19,6 +19,15 @@ class CandidatePairs {
   struct Entry {
     int32_t ip, is;  // leaf node indices (probe BVH, scene BVH)
     double gap;      // lower bound on the boxes' distance at the build configuration (m)
+    // A separating direction of the two boxes at the build configuration
+    // (unit, in S, pointing from the scene box to the probe box) and the
+    // boxes' gap along it (m, <= gap). The probe moved by shift_S plus at
+    // most a rotation's bound rot (see MotionSinceBuild) keeps its leaf's
+    // contents at least axis_gap + axis_S . shift_S - rot from the scene
+    // leaf's: a pair the motion slides along, not into, is proven apart
+    // without a box test.
+    Vector3 axis_S;
+    double axis_gap;
   };
 
   CandidatePairs() { entries_.reserve(4096); }
@@ -46,6 +55,12 @@ class CandidatePairs {
   // How many leading entries can come within `distance` at configurations
   // displaced by at most `displacement` (the rest cannot).
   int NearCount(double distance, double displacement) const;
+
+  // The motion of the probe since the build configuration, for `pair`'s
+  // pose translated by q_S: every probe point moved by shift_S plus at most
+  // *rotation_bound (m). False when the list is not this pair's or not valid.
+  bool MotionSinceBuild(const ModelPair& pair, const Vector3& q_S, Vector3* shift_S,
+                        double* rotation_bound) const;
 
   void Invalidate() { valid_ = false; }
   bool valid() const { return valid_; }

@@ -26,17 +26,27 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
       const auto& entries = list->entries();
       const auto& nodes_P = pair.P.bvh().nodes();
       const auto& nodes_S = pair.S.bvh().nodes();
-      if (pair.counters) pair.counters->box_tests += n;
+      // Along each entry's separating axis first (a dot product): only the
+      // pairs the motion may have brought within `distance` get a box test.
+      Vector3 shift_a, shift_b;
+      double rot = 0.0;
+      list->MotionSinceBuild(pair, q_a_S, &shift_a, &rot);
+      list->MotionSinceBuild(pair, q_b_S, &shift_b, &rot);  // one pose: the same rot
+      int64_t tested = 0;
       for (int k = 0; k < n; ++k) {
         const CandidatePairs::Entry& e = entries[k];
+        if (e.axis_gap + std::min(e.axis_S.dot(shift_a), e.axis_S.dot(shift_b)) - rot > distance)
+          continue;
+        ++tested;
         bool touch;
         if constexpr (std::is_invocable_v<NodeTest&, const BvhNode&, const BvhNode&, double*>)
           touch = may_touch(nodes_P[e.ip], nodes_S[e.is], &unused_key);
         else
           touch = may_touch(nodes_P[e.ip], nodes_S[e.is]);
         if (!touch) continue;
-        if (!on_leaf_pair(e.ip, e.is)) return;
+        if (!on_leaf_pair(e.ip, e.is)) break;
       }
+      if (pair.counters) pair.counters->box_tests += tested;
       return;
     }
   }
