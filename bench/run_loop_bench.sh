@@ -9,7 +9,7 @@
 # Every scene with a mesh tool runs a second time with --geometry-thread off
 # (PD in the tick) on the same trajectory, for the force difference the
 # geometry thread makes. Writes bench/results/loop_latency.md, .csv and PNG
-# plots (bench/loop_report.sh).
+# plots (bench/loop/loop_report.sh).
 #
 #   bench/run_loop_bench.sh [--minutes M] [--quick] [--only a,b,...]
 #
@@ -24,7 +24,7 @@
 # Each run replays the scene's trajectory (a committed CSV, or a probe_sim
 # parameter file turned into one), repeated to the run length, with
 # haptic_server --timing-log recording every tick; the server's CPU use is
-# read from /proc over the replay (bench/loop_cpu.sh).
+# read from /proc over the replay (bench/loop/loop_cpu.sh).
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 

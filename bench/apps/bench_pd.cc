@@ -1,0 +1,262 @@
+// bench_pd: PolyDepth speed against error on real mesh pairs, with the
+// reference PD and FCL baselines on the same cases. Writes
+// pd_speed_error.md, CSVs and PNG plots into --out. See bench/README.md.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "bench/report/bench_results.h"
+#include "bench/report/csv_writer.h"
+#include "bench/runs/haptic_bench.h"
+#include "bench/runs/knob_sweep.h"
+#include "bench/runs/pair_bench.h"
+#include "bench/report/plots.h"
+#include "bench/report/report_writer.h"
+#include "bench/report/summaries.h"
+
+#ifndef PD_SOURCE_DIR
+#define PD_SOURCE_DIR "."
+#endif
+
+namespace fs = std::filesystem;
+using namespace pd_bench;
+
+namespace {
+
+RunSettings MakeSettings(bool quick) {
+  RunSettings s;
+  s.quick = quick;
+  // The reference costs 10-300 ms per direction on these pairs: its subset
+  // and directions are what keep a full run near 30 min and --quick < 2 min.
+  s.random_cases = quick ? 16 : 100;
+  s.path_steps = quick ? 150 : 1000;
+  s.shallow_steps = quick ? 150 : 1000;
+  s.shallow_depth_fraction = 0.01;
+  s.ref_random = quick ? 3 : 24;
+  s.ref_path = quick ? 1 : 8;
+  s.ref_shallow = quick ? 1 : 8;
+  s.ref_random_large = quick ? 3 : 16;
+  s.ref_path_large = quick ? 1 : 2;
+  s.ref_shallow_large = quick ? 1 : 2;
+  s.large_tris = 30000;
+  s.ref_directions = quick ? 96 : 128;
+  s.ref_refine_iterations = quick ? 16 : 24;
+  s.ref_refine_starts = 4;
+  s.fcl_cases = quick ? 20 : 100;
+  s.sweep_cases = quick ? 8 : 60;
+  s.fcl_max_contacts = 100000;
+  s.haptic_steps = quick ? 1000 : 3000;
+  s.haptic_ref = quick ? 4 : 16;
+  s.seed = 20240611;
+  return s;
+}
+
+// --mesh-dir default: build/meshes under the working directory, beside the
+// binary (build/bin/..), or in the source tree, whichever exists.
+std::string FindMeshDir() {
+  std::vector<fs::path> candidates = {fs::current_path() / "build" / "meshes"};
+  std::error_code ec;
+  const fs::path exe = fs::canonical("/proc/self/exe", ec);
+  if (!ec) candidates.push_back(exe.parent_path().parent_path() / "meshes");
+  candidates.push_back(fs::path(PD_SOURCE_DIR) / "build" / "meshes");
+  for (const fs::path& p : candidates)
+    if (fs::is_directory(p)) return p.string();
+  return candidates.front().string();
+}
+
+void PrintHeadlines(const BenchRun& run) {
+  std::printf("\n%-18s %-8s %5s %10s %10s %10s %6s %6s %8s %7s %7s %6s %6s %9s %9s %9s %9s\n",
+              "pair", "scenario", "cases", "median_us", "p95_us", "p99_us", "iters", "starts",
+              "boxes", "tris", "valid", "!free+", "ref_n", "mean|err|", "p95|err|", "max|err|",
+              "signed");
+  for (const PairResult& p : run.pairs)
+    for (const ScenarioResult& s : p.scenarios) {
+      const ScenarioSummary m = Summarize(s);
+      std::printf("%-18s %-8s %5d %10.1f %10.1f %10.1f %6.2f %6.2f %8.0f %7.0f %6.1f%% %6d %6d "
+                  "%8.2f%% %8.2f%% %8.2f%% %8.2f%%\n",
+                  p.pair.name.c_str(), ScenarioName(s.scenario), m.n, m.time_us.median,
+                  m.time_us.p95, m.time_us.p99, m.mean_iterations, m.mean_starts,
+                  m.mean_box_tests, m.mean_triangle_tests, 100 * (m.n > 0 ? (m.n - m.n_invalid) / double(m.n) : 0.0), m.n_not_free_beyond,
+                  m.n_ref, 100 * m.abs_error.mean, 100 * m.abs_error.p95, 100 * m.abs_error.max,
+                  100 * m.signed_mean_error);
+    }
+}
+
+void PrintHapticHeadlines(const std::vector<HapticPairResult>& runs) {
+  std::printf("\n%-18s %6s %5s %9s %9s %9s %9s %8s %8s %7s %6s %5s %5s %8s %8s %8s\n", "haptic pair",
+              "poses", "coll", "med_us", "p99_us", "p99.9_us", "max_us", "fcl_med", "fcl_p99",
+              "ratio", "r_p99", "cold", "inval", "boxes", "tris", "mean|e|");
+  for (const HapticPairResult& r : runs) {
+    const HapticSummary m = SummarizeHaptic(r);
+    std::printf("%-18s %6d %5d %9.1f %9.1f %9.1f %9.1f %8.1f %8.1f %7.2f %6.2f %5d %5d %8.0f %8.0f %7.3f%%\n",
+                r.spec.name.c_str(), m.steps, m.colliding, m.pd_us.median, m.pd_us.p99, m.p999_us,
+                m.pd_us.max, m.fcl_us.median, m.fcl_us.p99, m.median_ratio, m.p99_ratio,
+                m.cold_restarts, m.invalid + m.not_free_beyond, m.mean_box_tests,
+                m.mean_triangle_tests, 100 * m.abs_error.mean);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"PolyDepth speed-against-error benchmark (reference PD and FCL baselines)"};
+  bool quick = false;
+  std::string out_dir = std::string(PD_SOURCE_DIR) + "/bench/results";
+  std::string mesh_dir;
+  std::vector<std::string> only_pairs;
+  uint64_t seed = 0;
+  int ref_threads = std::max(1u, std::thread::hardware_concurrency());
+  app.add_flag("--quick", quick, "fewer pairs, cases and reference directions (< 2 min)");
+  int haptic_ref = -1;
+  app.add_option("--haptic-ref", haptic_ref, "reference PDs per haptic path (quick 4, full 16)")
+      ->check(CLI::Range(0, 100000));
+  bool haptic_only = false;
+  app.add_flag("--haptic-only", haptic_only, "run only the haptic scenario (mesh tool sliding over a mesh object)");
+  // TakeLast: run_pd_bench.sh passes --mesh-dir and the user may override it.
+  app.add_option("--out", out_dir, "output directory")
+      ->capture_default_str()
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app.add_option("--mesh-dir", mesh_dir,
+                 "directory of the .off meshes (default: build/meshes, see scripts/fetch_meshes.sh)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app.add_option("--pairs", only_pairs, "run only these pairs (names as in the report)")
+      ->delimiter(',');
+  app.add_option("--seed", seed, "random seed (default: fixed)");
+  int ref_directions = 0;
+  app.add_option("--ref-directions", ref_directions,
+                 "override the reference's Fibonacci directions (quick 96, full 128)")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--ref-threads", ref_threads, "threads for the reference PD")
+      ->capture_default_str()->check(CLI::Range(1, 64));
+  std::vector<std::string> scenarios;
+  app.add_option("--scenarios", scenarios,
+                 "run only these scenarios (random, path, shallow, haptic; default all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"random", "path", "shallow", "haptic"}));
+  bool no_sweep = false;
+  app.add_flag("--no-sweep", no_sweep, "skip the knob sweep");
+  int random_cases = 0, ref_random = -1;
+  app.add_option("--random-cases", random_cases, "random cases per pair (quick 16, full 100)")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--ref-random", ref_random,
+                 "reference PDs per pair in the random scenario (quick 3, full 24/16)")
+      ->check(CLI::Range(0, 100000));
+  CLI11_PARSE(app, argc, argv);
+
+  const auto t_start = std::chrono::steady_clock::now();
+  BenchRun run;
+  run.machine = ReadMachineInfo(PD_SOURCE_DIR);
+  run.settings = MakeSettings(quick);
+  RunSettings& st = run.settings;
+  if (seed != 0) st.seed = seed;
+  if (haptic_ref >= 0) st.haptic_ref = haptic_ref;
+  st.ref_threads = ref_threads;
+  if (ref_directions > 0) st.ref_directions = ref_directions;
+  if (random_cases > 0) st.random_cases = random_cases;
+  if (ref_random >= 0) st.ref_random = st.ref_random_large = ref_random;
+  const auto wants = [&](const std::string& name) {
+    return scenarios.empty() || std::find(scenarios.begin(), scenarios.end(), name) != scenarios.end();
+  };
+  for (const std::string& name : scenarios)
+    if (name != "haptic") st.scenarios.push_back(name);
+  if (st.scenarios.empty() && !scenarios.empty() && !haptic_only) {
+    std::cerr << "bench_pd: --scenarios haptic alone: use --haptic-only\n";
+    haptic_only = true;
+  }
+  st.mesh_dir = mesh_dir.empty() ? FindMeshDir() : mesh_dir;
+  st.out_dir = out_dir;
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (!fs::is_directory(out_dir)) {
+    std::cerr << "bench_pd: cannot create output directory " << out_dir << "\n";
+    return 1;
+  }
+  std::cerr << "bench_pd: " << (quick ? "quick" : "full") << " run, meshes from " << st.mesh_dir
+            << ", output to " << out_dir << "\n";
+
+  ModelCache cache(st.mesh_dir, quick ? 1 : 3);
+  std::vector<HapticPairResult>& haptic = run.haptic;
+  for (const HapticPairSpec& spec : DefaultHapticPairs()) {
+    if ((quick && !spec.in_quick) || !wants("haptic")) continue;
+    std::string why;
+    auto tool = cache.Get(spec.tool, &why, kHapticToolRadius);
+    auto object = tool ? cache.Get(spec.object, &why, kHapticObjectRadius) : nullptr;
+    if (!tool || !object) {
+      std::cerr << "bench_pd: skipping haptic pair " << spec.name << ": " << why << "\n";
+      run.skipped.push_back(spec.name + ": " + why);
+      continue;
+    }
+    haptic.push_back(RunHapticPair({spec.name, tool, object}, spec, st));
+  }
+  const std::string haptic_csv = WriteHapticCsv(haptic, out_dir);
+  if (haptic_only) {
+    run.total_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    run.load_average_end = ReadLoadAverage();
+    const std::string report = out_dir + "/pd_haptic.md";
+    WriteHapticReport(run, report, {haptic_csv}, WritePlots(run, out_dir));
+    PrintHapticHeadlines(haptic);
+    std::printf("\nbench_pd: report %s (%.0f s)\n", report.c_str(), run.total_seconds);
+    return 0;
+  }
+
+  // Models: the pairs', plus ~100k-triangle ones for the precomputation target.
+  std::vector<BenchPair> pairs;
+  const std::set<std::string> wanted(only_pairs.begin(), only_pairs.end());
+  for (const std::string& name : wanted) {
+    bool known = false;
+    for (const PairSpec& spec : DefaultPairs()) known = known || spec.name == name;
+    if (!known) std::cerr << "bench_pd: --pairs: no pair named " << name << "\n";
+  }
+  for (const PairSpec& spec : DefaultPairs()) {
+    if (!wanted.empty() ? !wanted.count(spec.name) : (quick && !spec.in_quick)) continue;
+    std::string why;
+    auto probe = cache.Get(spec.probe, &why);
+    auto scene = probe ? cache.Get(spec.scene, &why) : nullptr;
+    if (!probe || !scene) {
+      std::cerr << "bench_pd: skipping pair " << spec.name << ": " << why << "\n";
+      run.skipped.push_back(spec.name + ": " + why);
+      continue;
+    }
+    pairs.push_back({spec.name, probe, scene, spec.random_only});
+  }
+  if (pairs.empty()) {
+    std::cerr << "bench_pd: no pair to benchmark\n";
+    return 1;
+  }
+  for (const char* name : {"bunny00.off", "procedural:torus_100k", "procedural:icosphere_82k"}) {
+    std::string why;
+    if (!cache.Get(name, &why)) std::cerr << "bench_pd: precomputation model skipped: " << why << "\n";
+  }
+  run.models = cache.All();
+
+  const std::vector<KnobConfig> configs = SweepConfigs();
+  for (const BenchPair& pair : pairs) {
+    PairResult result = RunPair(pair, st);
+    if (!no_sweep) {
+      Progress bar(pair.name + ": knob sweep", SweepWork(result, configs, st.sweep_cases));
+      const std::vector<SweepRow> rows = RunSweep(result, configs, st.sweep_cases, &bar);
+      run.sweep.insert(run.sweep.end(), rows.begin(), rows.end());
+    }
+    run.pairs.push_back(std::move(result));
+  }
+
+  run.total_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  run.load_average_end = ReadLoadAverage();
+  std::vector<std::string> csvs = WriteCsvFiles(run, out_dir);
+  if (!haptic.empty()) csvs.push_back(haptic_csv);
+  const std::vector<std::string> pngs = WritePlots(run, out_dir);
+  const std::string report = out_dir + "/pd_speed_error.md";
+  WriteMarkdownReport(run, report, csvs, pngs);
+  PrintHeadlines(run);
+  PrintHapticHeadlines(haptic);
+  std::printf("\nbench_pd: report %s (%.0f s)\n", report.c_str(), run.total_seconds);
+  return 0;
+}

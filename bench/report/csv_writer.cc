@@ -1,0 +1,109 @@
+#include "bench/report/csv_writer.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <vector>
+#include <stdexcept>
+
+#include "bench/report/summaries.h"
+
+namespace pd_bench {
+namespace {
+
+// Empty field for a value that was not measured.
+std::string Num(double v) {
+  if (std::isnan(v)) return "";
+  std::ostringstream s;
+  s << std::setprecision(9) << v;
+  return s.str();
+}
+
+std::ofstream Open(const std::string& path) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write " + path);
+  return f;
+}
+
+}  // namespace
+
+std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& dir) {
+  {
+    std::ofstream f = Open(dir + "/pd_cases.csv");
+    f << "pair,scenario,index,colliding,pd_valid,pd_verified_free,pd_depth_m,pd_time_us,"
+         "pd_in_pocket,pd_iterations,pd_contacts,pd_initializer,pd_tx_m,pd_ty_m,pd_tz_m,"
+         "ref_depth_m,ref_time_ms,ref_directions,ref_check_pd_free,ref_answer_free,pd_rel_error,"
+         "fcl_convex_collide,fcl_convex_depth_m,fcl_convex_time_us,fcl_convex_rel_error,"
+         "fcl_mesh_collide,fcl_mesh_depth_m,fcl_mesh_time_us,fcl_mesh_contacts,"
+         "fcl_mesh_rel_error,pd_box_tests,pd_triangle_tests\n";
+    for (const PairResult& p : run.pairs)
+      for (const ScenarioResult& s : p.scenarios)
+        for (const CaseRecord& r : s.cases) {
+          const double ref = r.has_ref ? r.ref.depth : kNaN;
+          f << p.pair.name << ',' << ScenarioName(s.scenario) << ',' << r.c.index << ','
+            << r.c.colliding << ',' << r.pd.valid << ',' << r.pd.verified_free << ','
+            << Num(r.pd.depth) << ',' << Num(r.pd.time_us) << ',' << r.pd.in_pocket << ','
+            << r.pd.iterations << ','
+            << r.pd.contacts << ',' << r.pd.initializer << ',' << Num(r.pd.translation_W.x())
+            << ',' << Num(r.pd.translation_W.y()) << ',' << Num(r.pd.translation_W.z()) << ',';
+          if (r.has_ref)
+            f << Num(r.ref.depth) << ',' << Num(r.ref.time_ms) << ',' << r.ref.directions << ','
+              << r.ref.pd_answer_free << ',' << r.ref.ref_answer_free << ','
+              << Num(RelativeError(r.pd.depth, ref)) << ',';
+          else
+            f << ",,,,,,";
+          if (r.has_fcl)
+            f << r.fcl.convex_collide << ',' << Num(r.fcl.convex_depth) << ','
+              << Num(r.fcl.convex_time_us) << ',' << Num(RelativeError(r.fcl.convex_depth, ref))
+              << ',' << r.fcl.mesh_collide << ',' << Num(r.fcl.mesh_depth) << ','
+              << Num(r.fcl.mesh_time_us) << ',' << r.fcl.mesh_contacts << ','
+              << Num(RelativeError(r.fcl.mesh_depth, ref)) << ',';
+          else
+            f << ",,,,,,,,,";
+          f << Num(r.pd.box_tests) << ',' << Num(r.pd.triangle_tests) << '\n';
+        }
+  }
+  {
+    std::ofstream f = Open(dir + "/pd_sweep.csv");
+    f << "pair,scenario,config,cases,median_us,p90_us,mean_iterations,valid_rate,ref_cases,"
+         "mean_abs_rel_error,p95_abs_rel_error,signed_mean_rel_error\n";
+    for (const SweepRow& r : run.sweep)
+      f << r.pair << ',' << ScenarioName(r.scenario) << ',' << r.config << ',' << r.n << ','
+        << Num(r.median_us) << ',' << Num(r.p90_us) << ',' << Num(r.mean_iterations) << ','
+        << Num(r.valid_rate) << ',' << r.n_ref << ',' << Num(r.mean_abs_error) << ','
+        << Num(r.p95_abs_error) << ',' << Num(r.signed_mean_error) << '\n';
+  }
+  {
+    std::ofstream f = Open(dir + "/pd_models.csv");
+    f << "model,source,scale_file_to_m,triangles,closed,build_ms,memory_bytes,bytes_per_triangle\n";
+    for (const auto& m : run.models)
+      f << m->name << ',' << m->source << ',' << Num(m->scale) << ',' << m->triangles << ','
+        << m->closed << ',' << Num(m->build_ms) << ',' << m->memory_bytes << ','
+        << Num(static_cast<double>(m->memory_bytes) / m->triangles) << '\n';
+  }
+  return {"pd_cases.csv", "pd_sweep.csv", "pd_models.csv"};
+}
+
+std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std::string& dir) {
+  const std::string name = "pd_haptic.csv";
+  std::ofstream f = Open(dir + "/" + name);
+  f << "pair,index,colliding,pd_in_collision,pd_valid,pd_verified_free,pd_free_beyond,"
+       "pd_converged,pd_depth_m,pd_time_us,pd_iterations,pd_contacts,pd_initializer,"
+       "pd_box_tests,pd_triangle_tests,cold_restart,fcl_collide,fcl_time_us,ref_depth_m,"
+       "pd_rel_error,cross_checked\n";
+  for (const HapticPairResult& r : runs)
+    for (const HapticStep& s : r.steps)
+      f << r.spec.name << ',' << s.c.index << ',' << s.c.colliding << ',' << s.pd.in_collision
+        << ',' << s.pd.valid << ',' << s.pd.verified_free << ',' << s.free_beyond << ','
+        << s.converged << ',' << Num(s.pd.depth) << ',' << Num(s.pd.time_us) << ','
+        << s.pd.iterations << ',' << s.pd.contacts << ',' << s.pd.initializer << ','
+        << Num(s.box_tests) << ',' << Num(s.triangle_tests) << ',' << s.cold_restart << ','
+        << s.fcl_collide << ',' << Num(s.fcl_time_us) << ','
+        << (s.has_ref ? Num(s.ref.depth) : "") << ','
+        << (s.has_ref ? Num(RelativeError(s.pd.depth, s.ref.depth)) : "") << ','
+        << s.cross_checked << '\n';
+  return name;
+}
+
+}  // namespace pd_bench

@@ -1,0 +1,132 @@
+#include "bench/runs/haptic_bench.h"
+
+#include "bench/runs/fcl_baselines.h"
+#include "bench/common/progress.h"
+#include "bench/runs/reference_runner.h"
+#include "bench/report/summaries.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/model_pair.h"
+#include "pd_core/polydepth/polydepth.h"
+
+namespace pd_bench {
+
+HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec,
+                               const RunSettings& st) {
+  HapticPairResult out;
+  out.spec = spec;
+  out.pair = pair;
+  const std::string tag = spec.name + ": ";
+  HapticPath path;
+  {
+    Progress bar(tag + "making the haptic path", 1);
+    path = MakeHapticPath(pair, spec, st.haptic_steps, st.seed + 7);
+  }
+  out.description = path.description;
+  const pd::Isometry3 X_WS = ScenePose(pair);
+
+  // PolyDepth alone first, one warm-started solver for the whole path.
+  {
+    Progress bar(tag + "PolyDepth (haptic)", static_cast<int>(path.cases.size()));
+    pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, pd::PolyDepthOptions{});
+    bool previous_seen = false;
+    for (const Case& c : path.cases) {
+      const pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS, /*coherent=*/true);
+      HapticStep s;
+      s.c = c;
+      s.pd.in_collision = r.in_collision;
+      s.pd.valid = r.valid;
+      s.pd.depth = r.depth;
+      s.pd.time_us = r.time_us;
+      s.pd.iterations = r.iterations;
+      s.pd.contacts = r.num_contacts;
+      s.pd.initializer = pd::InitializerName(r.initializer);
+      s.pd.translation_W = r.translation_W;
+      s.converged = r.converged;
+      s.box_tests = static_cast<double>(r.box_tests);
+      s.triangle_tests = static_cast<double>(r.triangle_tests);
+      s.cold_restart = previous_seen && r.in_collision && r.warm_start_failed;
+      s.cross_checked = r.cross_checked;
+      previous_seen = true;
+      out.steps.push_back(s);
+      bar.Tick();
+    }
+  }
+  // Checks and FCL, outside PolyDepth's clock.
+  {
+    Progress bar(tag + "checks and FCL collide", static_cast<int>(out.steps.size()));
+    const FclBaselines fcl(pair.probe->model->mesh(), pair.scene->model->mesh(), 1);
+    for (HapticStep& s : out.steps) {
+      const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, s.c.X_WP, X_WS);
+      const pd::Vector3 q_S = X_WS.linear().transpose() * s.pd.translation_W;
+      s.pd.verified_free = !pd::InCollision(mp, q_S);
+      const double n = q_S.norm();
+      s.free_beyond = s.pd.verified_free &&
+                      (n == 0 || !pd::InCollision(mp, q_S * (1.0 + kHapticFreeMargin * mp.size() / n)));
+      const FclAnswer a = fcl.Collide(s.c.X_WP, X_WS);
+      s.fcl_time_us = a.time_us;
+      s.fcl_collide = a.in_collision;
+      bar.Tick();
+    }
+  }
+  // Reference on a spread of colliding poses, without any hint.
+  std::vector<int> colliding;
+  for (size_t i = 0; i < out.steps.size(); ++i)
+    if (out.steps[i].c.colliding) colliding.push_back(static_cast<int>(i));
+  std::vector<RefJob> jobs;
+  for (int k : SpreadIndices(static_cast<int>(colliding.size()), st.haptic_ref)) {
+    HapticStep& s = out.steps[colliding[k]];
+    s.has_ref = true;
+    jobs.push_back({&s.c, s.pd.translation_W, &s.ref});
+  }
+  {
+    Progress bar(tag + "reference PD (haptic)", static_cast<int>(jobs.size()));
+    RunReference(pair, jobs, st, &bar);
+  }
+  return out;
+}
+
+HapticSummary SummarizeHaptic(const HapticPairResult& r) {
+  HapticSummary m;
+  std::vector<double> pd_us, free_us, fcl_us, iters, boxes, tris, err, signed_err;
+  for (const HapticStep& s : r.steps) {
+    ++m.steps;
+    if (s.fcl_collide != s.c.colliding) ++m.fcl_disagree;
+    if (!s.pd.in_collision) {
+      free_us.push_back(s.pd.time_us);
+      continue;
+    }
+    ++m.colliding;
+    pd_us.push_back(s.pd.time_us);
+    fcl_us.push_back(s.fcl_time_us);
+    iters.push_back(s.pd.iterations);
+    boxes.push_back(s.box_tests);
+    tris.push_back(s.triangle_tests);
+    m.cold_restarts += s.cold_restart;
+    m.cross_checks += s.cross_checked;
+    m.not_converged += !s.converged;
+    m.invalid += !(s.pd.valid && s.pd.verified_free);
+    m.not_free_beyond += !s.free_beyond;
+    if (s.has_ref) {
+      const double e = RelativeError(s.pd.depth, s.ref.depth);
+      if (!std::isnan(e)) {
+        ++m.n_ref;
+        err.push_back(std::fabs(e));
+        signed_err.push_back(e);
+      }
+    }
+  }
+  m.pd_us = Summarize(pd_us);
+  m.pd_free_us = Summarize(free_us);
+  m.fcl_us = Summarize(fcl_us);
+  m.p999_us = Percentile(pd_us, 99.9);
+  m.median_ratio = m.pd_us.median / m.fcl_us.median;
+  m.p99_ratio = m.pd_us.p99 / m.fcl_us.p99;
+  m.mean_iterations = Mean(iters);
+  m.mean_box_tests = Mean(boxes);
+  m.mean_triangle_tests = Mean(tris);
+  m.abs_error = Summarize(err);
+  m.signed_mean_error = Mean(signed_err);
+  return m;
+}
+
+}  // namespace pd_bench

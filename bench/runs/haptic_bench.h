@@ -1,0 +1,34 @@
+#pragma once
+// The haptic scenario (haptic_paths.h) on one tool/object pair: PolyDepth
+// warm-started pose after pose, FCL's boolean collide of the same meshes at
+// the same poses as the cost yardstick, and the reference PD (no hint from
+// the solver) on a spread of colliding poses.
+#include <string>
+#include <vector>
+
+#include "bench/report/bench_results.h"
+#include "bench/cases/haptic_paths.h"
+#include "bench/common/stats.h"
+
+namespace pd_bench {
+
+struct HapticSummary {
+  int steps = 0, colliding = 0;
+  Summary pd_us;           // colliding poses
+  Summary pd_free_us;      // free poses (collision test only)
+  Summary fcl_us;          // FCL collide on the colliding poses
+  double median_ratio = kNaN, p99_ratio = kNaN;  // PolyDepth / FCL, colliding poses
+  double p999_us = kNaN;
+  double mean_iterations = kNaN, mean_box_tests = kNaN, mean_triangle_tests = kNaN;
+  int cold_restarts = 0, cross_checks = 0, not_converged = 0, invalid = 0, not_free_beyond = 0;
+  int fcl_disagree = 0;    // FCL's verdict differs from the path's
+  int n_ref = 0;
+  Summary abs_error;       // |depth - ref| / ref
+  double signed_mean_error = kNaN;
+};
+
+HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec,
+                               const RunSettings& st);
+HapticSummary SummarizeHaptic(const HapticPairResult& r);
+
+}  // namespace pd_bench

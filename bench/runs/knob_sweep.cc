@@ -1,0 +1,150 @@
+#include "bench/runs/knob_sweep.h"
+
+#include <cstdio>
+
+#include "bench/runs/pd_runner.h"
+#include "bench/runs/reference_runner.h"
+#include "bench/report/summaries.h"
+
+namespace pd_bench {
+namespace {
+
+std::string Label(const char* knob, double value, const char* format = "%g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, value);
+  return std::string(knob) + "=" + buf;
+}
+
+bool Runs(const KnobConfig& k, Scenario s) {
+  return k.coherent_scenarios ? s != Scenario::kRandom : s == Scenario::kRandom;
+}
+
+// A warm-started configuration depends on the previous step: it needs the path.
+bool NeedsWholeSequence(const KnobConfig& k) {
+  return k.coherent_scenarios && k.options.warm_start;
+}
+
+// Which cases of a scenario the sweep solves.
+std::vector<bool> SweepMask(const ScenarioResult& s, int sweep_cases) {
+  std::vector<bool> mask(s.cases.size(), false);
+  std::vector<int> colliding;
+  for (size_t i = 0; i < s.cases.size(); ++i) {
+    if (!s.cases[i].c.colliding) continue;
+    colliding.push_back(static_cast<int>(i));
+    if (s.cases[i].has_ref) mask[i] = true;
+  }
+  for (int i : SpreadIndices(static_cast<int>(colliding.size()), sweep_cases))
+    mask[colliding[i]] = true;
+  return mask;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> SweptKnobDefaults() {
+  const pd::PolyDepthOptions d;
+  auto value = [](const std::string& label) { return label.substr(label.find('=') + 1); };
+  return {{"max_iterations", value(Label("max_iterations", d.max_iterations))},
+          {"convergence_tol", value(Label("convergence_tol", d.convergence_tol, "%.0e"))},
+          {"num_maximally_clear", value(Label("num_maximally_clear", d.num_maximally_clear))},
+          {"num_iterated_starts", value(Label("num_iterated_starts", d.num_iterated_starts))},
+          {"num_random", value(Label("num_random", d.num_random))}};
+}
+
+std::vector<KnobConfig> SweepConfigs() {
+  const pd::PolyDepthOptions d;
+  std::vector<KnobConfig> out;
+  out.push_back({"default", d, false, true});
+  for (int it : {1, 2, 4, 8, 40}) {
+    if (it == d.max_iterations) continue;
+    KnobConfig k{Label("max_iterations", it), d};
+    k.options.max_iterations = it;
+    out.push_back(k);
+  }
+  for (double tol : {1e-3, 1e-4, 1e-5, 1e-6}) {
+    if (tol == d.convergence_tol) continue;
+    KnobConfig k{Label("convergence_tol", tol, "%.0e"), d};
+    k.options.convergence_tol = tol;
+    out.push_back(k);
+  }
+  for (int m : {1, 3, 6, 12, 24}) {
+    if (m == d.num_maximally_clear) continue;
+    KnobConfig k{Label("num_maximally_clear", m), d};
+    k.options.num_maximally_clear = m;
+    out.push_back(k);
+  }
+  for (int m : {1, 2, 4, 8}) {
+    if (m == d.num_iterated_starts) continue;
+    KnobConfig k{Label("num_iterated_starts", m), d};
+    k.options.num_iterated_starts = m;
+    out.push_back(k);
+  }
+  for (int r : {0, 1, 2, 3, 4}) {
+    if (r == d.num_random) continue;
+    KnobConfig k{Label("num_random", r), d};
+    k.options.num_random = r;
+    out.push_back(k);
+  }
+  out.push_back({"default", d, true, true});
+  KnobConfig cold{"warm_start=off", d, true};
+  cold.options.warm_start = false;
+  out.push_back(cold);
+  return out;
+}
+
+int SweepWork(const PairResult& pair, const std::vector<KnobConfig>& configs, int sweep_cases) {
+  int work = 0;
+  for (const KnobConfig& k : configs) {
+    if (k.is_default) continue;
+    for (const ScenarioResult& s : pair.scenarios) {
+      if (!Runs(k, s.scenario)) continue;
+      if (NeedsWholeSequence(k)) {
+        work += static_cast<int>(s.cases.size());
+        continue;
+      }
+      for (bool m : SweepMask(s, sweep_cases)) work += m;
+    }
+  }
+  return work;
+}
+
+std::vector<SweepRow> RunSweep(const PairResult& pair, const std::vector<KnobConfig>& configs,
+                               int sweep_cases, Progress* progress) {
+  std::vector<SweepRow> rows;
+  for (const KnobConfig& k : configs) {
+    for (const ScenarioResult& s : pair.scenarios) {
+      if (!Runs(k, s.scenario)) continue;
+      const std::vector<bool> mask = SweepMask(s, sweep_cases);
+      std::vector<PdOutcome> outcomes;
+      if (k.is_default) {
+        for (const CaseRecord& r : s.cases) outcomes.push_back(r.pd);
+      } else if (NeedsWholeSequence(k)) {
+        std::vector<Case> cases;
+        for (const CaseRecord& r : s.cases) cases.push_back(r.c);
+        outcomes = RunPolyDepth(pair.pair, cases, k.options, true, progress);
+      } else {
+        std::vector<Case> cases;
+        for (size_t i = 0; i < s.cases.size(); ++i)
+          if (mask[i]) cases.push_back(s.cases[i].c);
+        const std::vector<PdOutcome> ran = RunPolyDepth(
+            pair.pair, cases, k.options, s.scenario != Scenario::kRandom, progress);
+        outcomes.resize(s.cases.size());
+        for (size_t i = 0, j = 0; i < s.cases.size(); ++i)
+          if (mask[i]) outcomes[i] = ran[j++];
+      }
+      // Same cases in every row: drop answers outside the mask.
+      for (size_t i = 0; i < outcomes.size(); ++i)
+        if (!mask[i]) outcomes[i].time_us = kNaN;
+      SweepRow row = SummarizeOutcomes(s, outcomes);
+      row.pair = pair.pair.name;
+      row.config = k.label;
+      if (const size_t eq = k.label.find('='); eq != std::string::npos) {
+        row.knob = k.label.substr(0, eq);
+        row.value = k.label.substr(eq + 1);
+      }
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
+}  // namespace pd_bench
