@@ -80,7 +80,7 @@ BIN="$BUILD_DIR/bin"
 OUT="${LOOP_BENCH_OUT:-$ROOT/bench/results}"
 WORK="${LOOP_BENCH_REUSE:-}"
 if [[ -n "$WORK" ]]; then
-  exec "$ROOT/bench/loop_report.sh" "$WORK" "$OUT"
+  exec "$ROOT/bench/loop/loop_report.sh" "$WORK" "$OUT"
 fi
 
 "$ROOT/scripts/install_deps.sh" >/dev/null
@@ -127,7 +127,7 @@ run_one() {
   fi
   repeat_trajectory "$traj_src" "$SECONDS_PER_RUN" "$dir/trajectory.csv"
   # The replay, wrapped so that both processes' CPU time is read (loop_cpu.sh).
-  printf '#!/bin/sh\nexec "%s" "%s" "%s" -- "%s" "$@"\n' "$ROOT/bench/loop_cpu.sh" "$server_exe" \
+  printf '#!/bin/sh\nexec "%s" "%s" "%s" -- "%s" "$@"\n' "$ROOT/bench/loop/loop_cpu.sh" "$server_exe" \
     "$dir/cpu.txt" "$BIN/probe_replay" > "$dir/replay_wrapped"
   chmod +x "$dir/replay_wrapped"
   {
@@ -189,4 +189,4 @@ for row in "${runs[@]}"; do
 done
 echo "end_utc=$(date -u '+%Y-%m-%d %H:%M:%S UTC')" >> "$WORK/meta.txt"
 
-"$ROOT/bench/loop_report.sh" "$WORK" "$OUT"
+"$ROOT/bench/loop/loop_report.sh" "$WORK" "$OUT"

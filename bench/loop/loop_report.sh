@@ -127,7 +127,7 @@ done
 # Plots.
 runs_list=$(awk -F, 'NR > 1 { printf "%s ", $1 }' "$csv")
 loop_runs=$(awk -F, 'NR > 1 && $8 != "-" { printf "%s ", $1 }' "$csv")
-gnuplot -e "dir='$OUT'; runs='$runs_list'; loop_runs='$loop_runs'" "$ROOT/bench/loop_plots.gp"
+gnuplot -e "dir='$OUT'; runs='$runs_list'; loop_runs='$loop_runs'" "$ROOT/bench/loop/loop_plots.gp"
 
 # Markdown.
 col() { awk -F, -v c="$1" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == c) k = i; next } { print $1, $k }' "$csv"; }
