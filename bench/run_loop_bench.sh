@@ -84,9 +84,9 @@ if [[ -n "$WORK" ]]; then
 fi
 
 "$ROOT/scripts/install_deps.sh" >/dev/null
-echo "run_loop_bench: building haptic_server, probe_replay, probe_sim, echo_server in $BUILD_DIR" >&2
+echo "run_loop_bench: building haptic_server, probe_replay, probe_sim, echo_server, cpu_stall_probe in $BUILD_DIR" >&2
 cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$BUILD_DIR" -j"$(nproc)" --target haptic_server probe_replay probe_sim echo_server >/dev/null
+cmake --build "$BUILD_DIR" -j"$(nproc)" --target haptic_server probe_replay probe_sim echo_server cpu_stall_probe >/dev/null
 # The bench scenes name their meshes as ../../build/meshes/*.off.
 "$ROOT/scripts/fetch_meshes.sh" "$ROOT/build/meshes" >/dev/null
 
@@ -143,10 +143,17 @@ run_one() {
     cyclictest -m -p 79 -a 1 -t 1 -i 1000 -D "$((SECONDS_PER_RUN + 4))" -q -h 20000 > "$dir/cyclictest.txt" 2>&1 &
     ct_pid=$!
   fi
+  # The floor for CPU time the platform charges a running thread (a
+  # fixed 20 us chunk per ms, SCHED_FIFO below cyclictest, same CPU): what
+  # the server's compute-caused count cannot tell from its own compute.
+  local probe_pid=""
+  "$BIN/cpu_stall_probe" --cpu 1 --priority 78 --seconds "$((SECONDS_PER_RUN + 4))" > "$dir/cpu_stall_probe.txt" 2>&1 &
+  probe_pid=$!
   "$ROOT/scripts/netns_run.sh" "$ROOT/probes/scripts/run_session.sh" \
     --out-dir "$dir" --replay "$dir/replay_wrapped" --trajectory "$dir/trajectory.csv" \
     --replay-arg --max-superseded --replay-arg 0.5 -- "$server_exe" "$@" > "$dir/session.log" 2>&1 || rc=$?
   [[ -n "$ct_pid" ]] && { wait "$ct_pid" || echo "run_loop_bench: $name: cyclictest failed (see $dir/cyclictest.txt)" >&2; }
+  wait "$probe_pid" || echo "run_loop_bench: $name: cpu_stall_probe failed (see $dir/cpu_stall_probe.txt)" >&2
   { echo "exit=$rc"; echo "load_after=$(cut -d' ' -f1-3 /proc/loadavg)"; } >> "$dir/run.txt"
   local line
   line=$(grep -h "haptic_server summary" "$dir/server.out" 2>/dev/null | tail -1 |

@@ -98,7 +98,7 @@ done
 # Misses by cause against the platform's floor, the geometry thread and the
 # force difference it makes (issue 11): one row per run in loop_floor.csv.
 floor="$OUT/loop_floor.csv"
-echo "run,misses,misses_compute,misses_late_wakeup,late_wakeups,late_wakeups_per_min,cyclictest_cycles,cyclictest_late_1ms,cyclictest_late_per_min,cyclictest_max_us,wake_latency_p99_us,compute_p50_us,geometry_thread,pd_update_rate_hz,model_age_p50,model_age_p99,model_age_max,pose_triggered,rtt_p50_us,rtt_target_us,force_diff_rms_N,force_diff_max_N,misses_stalled,tick_cpu_p99_us,tick_cpu_max_us" > "$floor"
+echo "run,misses,misses_compute,misses_late_wakeup,late_wakeups,late_wakeups_per_min,cyclictest_cycles,cyclictest_late_1ms,cyclictest_late_per_min,cyclictest_max_us,wake_latency_p99_us,compute_p50_us,geometry_thread,pd_update_rate_hz,model_age_p50,model_age_p99,model_age_max,pose_triggered,rtt_p50_us,rtt_target_us,force_diff_rms_N,force_diff_max_N,misses_stalled,tick_cpu_p99_us,tick_cpu_max_us,probe_chunks,probe_cpu_stalls,probe_max_cpu_us" > "$floor"
 for run in "${RUNS[@]}"; do
   d="$WORK/$run"
   s_out="$d/server.out"
@@ -108,6 +108,12 @@ for run in "${RUNS[@]}"; do
     read -r ctc ctl ctmax < <(awk '/^# Total:/ { c = $3 } /^# Max Latencies:/ { m = $4 + 0 } /^# Histogram Overflows:/ { o = $4 + 0 }
       !/^#/ && NF >= 2 && $1 + 0 >= 1000 { l += $2 } END { printf "%d %d %d\n", c, l + o, m }' "$d/cyclictest.txt")
     ctm=$(awk -v c="$ctc" -v l="$ctl" 'BEGIN { printf "%.1f", (c > 0 ? l / (c / 60000) : 0) }')
+  fi
+  pch=- pst=- pmax=-
+  if [[ -s "$d/cpu_stall_probe.txt" ]]; then
+    pv() { sed -n "s/.*[[:space:]]$1=\([^ ]*\).*/\1/p" "$d/cpu_stall_probe.txt" | tail -1; }
+    pch=$(pv chunks); pst=$(pv cpu_stalls); pmax=$(pv max_cpu_us)
+    pch=${pch:--} pst=${pst:--} pmax=${pmax:--}
   fi
   el=$(sv elapsed_s); lw=$(sv late_wakeups)
   [[ "$el" != - && "$lw" != - ]] && lpm=$(awk -v l="$lw" -v e="$el" 'BEGIN { printf "%.1f", (e > 0 ? l / (e / 60) : 0) }')
@@ -121,7 +127,7 @@ for run in "${RUNS[@]}"; do
         n++; s += e * e; if (e > m) m = e }
       END { if (n) printf "%.3f %.3f\n", sqrt(s / n), m; else print "- -" }' "$WORK/${run}_sync/result.csv" "$d/result.csv")
   fi
-  echo "$run,$(sv deadline_misses),$(sv misses_compute),$(sv misses_late_wakeup),$lw,$lpm,$ctc,$ctl,$ctm,$ctmax,$(sv wake_latency_p99_us),$c50,$(sv geometry_thread),$(sv pd_update_rate_hz),$(sv model_age_p50_ticks),$(sv model_age_p99_ticks),$(sv model_age_max_ticks),$(sv pose_triggered),$r50,$target,$frms,$fmax,$(sv misses_stalled),$(sv tick_cpu_p99_us),$(sv tick_cpu_max_us)" >> "$floor"
+  echo "$run,$(sv deadline_misses),$(sv misses_compute),$(sv misses_late_wakeup),$lw,$lpm,$ctc,$ctl,$ctm,$ctmax,$(sv wake_latency_p99_us),$c50,$(sv geometry_thread),$(sv pd_update_rate_hz),$(sv model_age_p50_ticks),$(sv model_age_p99_ticks),$(sv model_age_max_ticks),$(sv pose_triggered),$r50,$target,$frms,$fmax,$(sv misses_stalled),$(sv tick_cpu_p99_us),$(sv tick_cpu_max_us),$pch,$pst,$pmax" >> "$floor"
 done
 
 # Plots.
@@ -168,12 +174,12 @@ md="$OUT/loop_latency.md"
   echo
   echo "## Misses by cause, the platform's floor, the geometry thread"
   echo
-  echo "From the server's summary line and \`cyclictest -m -p 79 -a 1 -i 1000\` run beside each run for the same time on the servo's CPU (the platform's floor). Misses split by cause: compute (the tick's own CPU time, read with \`CLOCK_THREAD_CPUTIME_ID\` after each send, overran the period: ours, to be zero), stalled (its CPU time fit the period but the thread was not running for long enough inside the tick to miss: preempted by another thread or an interrupt, or the vCPU descheduled by the hypervisor: the platform's) and late wake-up (the tick started too late to finish: the platform's). Tick CPU p99 / max: the thread's CPU time per tick, beside the wall-clock compute of the first table. Late wake-ups: wake-ups 1 ms or more after the tick's scheduled start (the pose's arrival in its window, or the deadline), per minute, against cyclictest's wake-ups 1 ms or more late per minute. Geometry: 1 = PD on the geometry thread (\`contact.geometry_thread\`), PD updates per second taken by the tick, and the age in ticks of the contact model it rendered. RTT target = 1.3 x (echo p50 + the server's compute p50). Force difference: |f| difference per pose against the same trajectory with \`--geometry-thread off\` (PD in the tick; the \`_sync\` rows), RMS and max over the poses both answered."
+  echo "From the server's summary line and \`cyclictest -m -p 79 -a 1 -i 1000\` run beside each run for the same time on the servo's CPU (the platform's floor). Misses split by cause: compute (the tick's own CPU time, read with \`CLOCK_THREAD_CPUTIME_ID\` after each send, overran the period: ours, to be zero), stalled (its CPU time fit the period but the thread was not running for long enough inside the tick to miss: preempted by another thread or an interrupt, or the vCPU descheduled by the hypervisor: the platform's) and late wake-up (the tick started too late to finish: the platform's). Tick CPU p99 / max: the thread's CPU time per tick, beside the wall-clock compute of the first table. CPU stall floor: \`cpu_stall_probe\` beside each run on the servo's CPU (SCHED_FIFO 78, a fixed ~20 us chunk of work every ms): chunks charged 1 ms or more of CPU time (of all chunks; max us). The platform charges such time to whatever thread is running (interrupts, softirqs, a vCPU descheduled while the thread was on it); the servo's compute-caused count reads the same clock, so a compute miss on a tick whose CPU p99 is tens of us, in a run where the probe also saw such chunks, is as likely the platform's. Late wake-ups: wake-ups 1 ms or more after the tick's scheduled start (the pose's arrival in its window, or the deadline), per minute, against cyclictest's wake-ups 1 ms or more late per minute. Geometry: 1 = PD on the geometry thread (\`contact.geometry_thread\`), PD updates per second taken by the tick, and the age in ticks of the contact model it rendered. RTT target = 1.3 x (echo p50 + the server's compute p50). Force difference: |f| difference per pose against the same trajectory with \`--geometry-thread off\` (PD in the tick; the \`_sync\` rows), RMS and max over the poses both answered."
   echo
-  echo "| Run | Misses: compute / stalled / late wake-up | Tick CPU p99 / max us | Late wake-ups / min (server) | cyclictest late >= 1 ms / min (max us) | Wake latency p99 us | Geometry thread | PD updates / s | Model age p50 / p99 / max ticks | Pose-triggered | RTT p50 us (target) | Force diff vs sync RMS / max N |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
-  awk -F, 'NR > 1 { printf "| %s | %s / %s / %s | %s / %s | %s | %s (%s) | %s | %s | %s | %s / %s / %s | %s | %s (%s) | %s / %s |\n",
-      $1, $3, $23, $4, $24, $25, $6, $9, $10, $11, $13, $14, $15, $16, $17, $18, $19, $20, $21, $22 }' "$floor"
+  echo "| Run | Misses: compute / stalled / late wake-up | Tick CPU p99 / max us | CPU stall floor: chunks >= 1 ms (max us) | Late wake-ups / min (server) | cyclictest late >= 1 ms / min (max us) | Wake latency p99 us | Geometry thread | PD updates / s | Model age p50 / p99 / max ticks | Pose-triggered | RTT p50 us (target) | Force diff vs sync RMS / max N |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  awk -F, 'NR > 1 { printf "| %s | %s / %s / %s | %s / %s | %s of %s (%s) | %s | %s (%s) | %s | %s | %s | %s / %s / %s | %s | %s (%s) | %s / %s |\n",
+      $1, $3, $23, $4, $24, $25, $27, $26, $28, $6, $9, $10, $11, $13, $14, $15, $16, $17, $18, $19, $20, $21, $22 }' "$floor"
   echo
   echo "## Round trip over LCM (replay side)"
   echo
@@ -205,6 +211,8 @@ md="$OUT/loop_latency.md"
     END { if (n) printf "- The round-trip p50 of the server runs spans %s to %s us and does not follow scene size: the replay and the server each keep their own 1 kHz clock, so where a pose lands in the server'"'"'s period (its wait for the next tick) is set by a phase that is random per run and drifts slowly. The same phase, with jitter on both sides, puts two poses into one period now and then: %.1f%% of the poses were superseded over all server runs.\n", lo, hi, 100 * s / p }' "$csv"
   awk -F, 'NR > 1 && $2 != "-" { m += $2; mc += $3; ms += $23; ml += $4; if ($3 + 0 > 0) bad = bad " `" $1 "`" }
     END { if (m) printf "- Of the %d deadline misses over all runs (server summary), %d were compute-caused (the tick'"'"'s own CPU time overran the period%s), %d stalled (the tick'"'"'s CPU time fit but the thread was not running: preempted or its vCPU descheduled) and %d late wake-ups (the SCHED_FIFO servo thread did not get the CPU at its start; cyclictest beside it measures the same floor).\n", m, mc, (mc ? ":" bad : ""), ms, ml }' "$floor"
+  awk -F, 'NR > 1 && $2 != "-" && $13 == "1" && $27 != "-" { n++; mc += $3; if ($3 + 0 > 0) runs++; pc += $26; ps += $27 }
+    END { if (n) printf "- With the geometry thread (%d runs): %d compute-caused misses in %d runs; the CPU stall probe beside them saw %d of %d fixed ~20 us chunks charged 1 ms or more of CPU time (the platform'"'"'s floor for the same clock).\n", n, mc, runs, ps, pc }' "$floor"
   awk -F, 'NR > 1 && $3 != "-" && $3 + 0 > 0 && $18 != "-" { n++; if (lo == "" || $18 + 0 < lo) { lo = $18 + 0; ln = $1 } if ($18 + 0 > hi) { hi = $18 + 0; hn = $1 } }
     END { if (n) printf "- Compute p99 over the scenes with meshes ranges from %s us (`%s`) to %s us (`%s`); see the plot against scene size.\n", lo, ln, hi, hn }' "$csv"
   awk -F, 'NR > 1 && $2 != "-" && $21 != "-" { n++; if (lo == "" || $21 < lo) lo = $21; if ($21 > hi) hi = $21 }
