@@ -2,6 +2,7 @@
 // lock-free hand-over, wrenches out to a sink. Liveness and bookkeeping only;
 // no timing is asserted (that belongs to benchmarks).
 #include "haptics/loop/servo_loop.h"
+#include "haptics/loop/monotonic_clock.h"
 
 #include <gtest/gtest.h>
 
@@ -168,7 +169,7 @@ TEST(ServoLoop, PoseTriggeredTicksRecoverFromALatePose) {
 }
 
 // A sink that overruns every 40th tick by 2.5 ms, either computing (busy
-// for that long) or not running (asleep: to the loop, like a preemption or
+// for 2.5 ms of CPU time) or not running (asleep: to the loop, like a preemption or
 // a descheduled vCPU: wall time passes, the thread's CPU time does not).
 class OverrunningSink final : public WrenchSink {
  public:
@@ -177,12 +178,14 @@ class OverrunningSink final : public WrenchSink {
     count.fetch_add(1);
     if (out.tick % 40 != 20) return;
     ++overruns;
-    const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(2500);
     if (busy_) {
-      while (std::chrono::steady_clock::now() < until) {
+      // 2.5 ms of this thread's CPU time (not wall time: under a loaded
+      // test run the spinning thread may be preempted, which is a stall).
+      const int64_t until = ThreadCpuNowNs() + 2'500'000;
+      while (ThreadCpuNowNs() < until) {
       }
     } else {
-      std::this_thread::sleep_until(until);
+      std::this_thread::sleep_for(std::chrono::microseconds(2500));
     }
   }
   std::atomic<int64_t> count{0};
