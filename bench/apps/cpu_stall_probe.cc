@@ -14,24 +14,17 @@
 // Prints one key=value line: chunks, chunk_us (calibrated), cpu_stalls
 // (chunks charged >= threshold), wall_stalls (chunks taking >= threshold of
 // wall time: preempted as well), max_cpu_us, max_wall_us, realtime, pinned.
-#include <pthread.h>
-#include <sched.h>
-#include <time.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cerrno>
+#include <climits>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
+#include <string>
+
+#include "haptics/loop/monotonic_clock.h"
+#include "haptics/loop/realtime.h"
 
 namespace {
-
-int64_t NowNs(clockid_t clock) {
-  timespec ts;
-  clock_gettime(clock, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 volatile double g_sink;
 
@@ -57,42 +50,32 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   bool pinned = false, realtime = false;
-  if (cpu >= 0) {
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    CPU_SET(cpu, &set);
-    pinned = sched_setaffinity(0, sizeof(set), &set) == 0;
-    if (!pinned) std::fprintf(stderr, "cpu_stall_probe: --cpu %d: %s\n", cpu, std::strerror(errno));
-  }
-  if (priority > 0) {
-    sched_param p{};
-    p.sched_priority = priority;
-    realtime = sched_setscheduler(0, SCHED_FIFO, &p) == 0;
-    if (!realtime) std::fprintf(stderr, "cpu_stall_probe: SCHED_FIFO %d: %s\n", priority, std::strerror(errno));
-  }
+  std::string why;
+  if (cpu >= 0 && !(pinned = haptics::TryPinToCpu(cpu, &why)))
+    std::fprintf(stderr, "cpu_stall_probe: --cpu %d: %s\n", cpu, why.c_str());
+  if (priority > 0 && !(realtime = haptics::TrySetFifoScheduling(priority, &why)))
+    std::fprintf(stderr, "cpu_stall_probe: SCHED_FIFO %d: %s\n", priority, why.c_str());
 
   // Calibrate: the least of a few timings of a trial size, scaled.
   const int64_t trial = 100000;
   int64_t best_ns = INT64_MAX;
   for (int k = 0; k < 20; ++k) {
-    const int64_t t0 = NowNs(CLOCK_THREAD_CPUTIME_ID);
+    const int64_t t0 = haptics::ThreadCpuNowNs();
     Work(trial);
-    best_ns = std::min(best_ns, NowNs(CLOCK_THREAD_CPUTIME_ID) - t0);
+    best_ns = std::min(best_ns, haptics::ThreadCpuNowNs() - t0);
   }
   const int64_t n = std::max<int64_t>(1, static_cast<int64_t>(trial * chunk_us * 1e3 / std::max<int64_t>(best_ns, 1)));
 
   const int64_t threshold_ns = static_cast<int64_t>(threshold_us * 1e3);
   int64_t chunks = 0, cpu_stalls = 0, wall_stalls = 0, max_cpu = 0, max_wall = 0, sum_cpu = 0;
-  const int64_t end = NowNs(CLOCK_MONOTONIC) + static_cast<int64_t>(seconds * 1e9);
-  int64_t next = NowNs(CLOCK_MONOTONIC);
+  const int64_t end = haptics::MonotonicNowNs() + static_cast<int64_t>(seconds * 1e9);
+  int64_t next = haptics::MonotonicNowNs();
   while (next < end) {
     next += 1'000'000;
-    timespec ts{static_cast<time_t>(next / 1'000'000'000), static_cast<long>(next % 1'000'000'000)};
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-    }
-    const int64_t w0 = NowNs(CLOCK_MONOTONIC), c0 = NowNs(CLOCK_THREAD_CPUTIME_ID);
+    haptics::SleepUntilNs(next);
+    const int64_t w0 = haptics::MonotonicNowNs(), c0 = haptics::ThreadCpuNowNs();
     Work(n);
-    const int64_t c = NowNs(CLOCK_THREAD_CPUTIME_ID) - c0, w = NowNs(CLOCK_MONOTONIC) - w0;
+    const int64_t c = haptics::ThreadCpuNowNs() - c0, w = haptics::MonotonicNowNs() - w0;
     ++chunks;
     sum_cpu += c;
     cpu_stalls += c >= threshold_ns;
@@ -100,7 +83,7 @@ int main(int argc, char** argv) {
     max_cpu = std::max(max_cpu, c);
     max_wall = std::max(max_wall, w);
     // A late wake-up past several periods: do not burst to catch up.
-    const int64_t now = NowNs(CLOCK_MONOTONIC);
+    const int64_t now = haptics::MonotonicNowNs();
     if (now > next + 1'000'000) next += ((now - next) / 1'000'000) * 1'000'000;
   }
   std::printf(

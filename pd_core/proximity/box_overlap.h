@@ -112,11 +112,15 @@ inline double BoxGap(const ProbeBoxInS& a, const BvhNode& b, double enough) {
 
 // True if the boxes may come within `distance` of each other. The bounding
 // spheres of the boxes decide most far pairs for a fraction of the cost of
-// the separating axes (no rotation products).
-inline bool BoxesWithin(const ProbeBoxInS& a, const BvhNode& b, double distance) {
+// the separating axes (no rotation products). When the spheres do not, the
+// separating-axis bound is written to *gap_bound if given (a descent key).
+inline bool BoxesWithin(const ProbeBoxInS& a, const BvhNode& b, double distance,
+                        double* gap_bound = nullptr) {
   const double reach = a.half_A->norm() + b.half_B.norm() + distance;
   if ((a.p_SA - b.center_M).squaredNorm() > reach * reach) return false;
-  return BoxGapLowerBound(a, b, distance) <= distance;
+  const double gap = BoxGapLowerBound(a, b, distance);
+  if (gap_bound != nullptr) *gap_bound = gap;
+  return gap <= distance;
 }
 
 // The times s in [lo, hi] within [0, s_max] at which box A moved by

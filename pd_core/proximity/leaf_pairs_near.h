@@ -4,6 +4,9 @@
 // configurations (only its near prefix, see candidate_pairs.h), otherwise
 // from a BVH descent. Both paths apply the same node test, so the caller sees
 // the same pairs either way, minus those the list proves too far.
+#include <algorithm>
+#include <type_traits>
+
 #include "pd_core/proximity/bvh_pair_descent.h"
 #include "pd_core/proximity/candidate_pairs.h"
 #include "pd_core/proximity/model_pair.h"
@@ -16,6 +19,13 @@ namespace pd {
 template <typename NodeTest, typename LeafFn>
 void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vector3& q_b_S,
                          double distance, NodeTest&& may_touch, LeafFn&& on_leaf_pair) {
+  // The node test with a key (a descent order) or without.
+  auto node_test = [&](const BvhNode& a, const BvhNode& b, double* key) {
+    if constexpr (std::is_invocable_v<NodeTest&, const BvhNode&, const BvhNode&, double*>)
+      return may_touch(a, b, key);
+    else
+      return may_touch(a, b);
+  };
   const CandidatePairs* list = pair.candidates;
   if (list != nullptr) {
     double unused_key;
@@ -38,27 +48,15 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
         if (e.axis_gap + std::min(e.axis_S.dot(shift_a), e.axis_S.dot(shift_b)) - rot > distance)
           continue;
         ++tested;
-        bool touch;
-        if constexpr (std::is_invocable_v<NodeTest&, const BvhNode&, const BvhNode&, double*>)
-          touch = may_touch(nodes_P[e.ip], nodes_S[e.is], &unused_key);
-        else
-          touch = may_touch(nodes_P[e.ip], nodes_S[e.is]);
-        if (!touch) continue;
+        if (!node_test(nodes_P[e.ip], nodes_S[e.is], &unused_key)) continue;
         if (!on_leaf_pair(e.ip, e.is)) break;
       }
       if (pair.counters) pair.counters->box_tests += tested;
       return;
     }
   }
-  DescendBvhPair(
-      pair.P.bvh(), pair.S.bvh(),
-      [&](const BvhNode& a, const BvhNode& b, double* key) {
-        if constexpr (std::is_invocable_v<NodeTest&, const BvhNode&, const BvhNode&, double*>)
-          return may_touch(a, b, key);
-        else
-          return may_touch(a, b);
-      },
-      [](double) { return true; }, on_leaf_pair, pair.counters);
+  DescendBvhPair(pair.P.bvh(), pair.S.bvh(), node_test, [](double) { return true; }, on_leaf_pair,
+                 pair.counters);
 }
 
 }  // namespace pd

@@ -51,11 +51,7 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, Collision
   ForEachLeafPairNear(
       pair, offset_S, offset_S, 0.0,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        const ProbeBoxInS& box = probe_box(a);
-        const double reach = box.half_A->norm() + b.half_B.norm();
-        if ((box.p_SA - b.center_M).squaredNorm() > reach * reach) return false;
-        *key = BoxGapLowerBound(box, b, 0.0);
-        return *key <= 0.0;
+        return BoxesWithin(probe_box(a), b, 0.0, key);  // deepest overlap first
       },
       [&](int ip, int is) {
         return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
