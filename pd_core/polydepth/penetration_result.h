@@ -50,8 +50,10 @@ struct PenetrationResult {
   // Warm-started (coherent) queries: no coherent start gave an answer and
   // the query restarted cold.
   bool warm_start_failed = false;
-  // A coherent answer had grown much deeper than its anchor and was checked
-  // against the cold starts (the shorter one on the same side won).
+  // A coherent answer had grown much deeper than its anchor and this query
+  // ran part of the check for a shorter one (free directions around the
+  // query inside the answer's length, a few per query; the shorter answer on
+  // the same side wins).
   bool cross_checked = false;
   // Times the answer was found inside a pocket of free space thinner than
   // PolyDepthOptions::pocket_thickness (it is moved out of the pocket when a

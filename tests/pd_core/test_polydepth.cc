@@ -348,6 +348,49 @@ TEST(PolyDepth, CoherentPushThroughThinPlateNeverFlips) {
   EXPECT_TRUE(cold_flipped);  // shows the test would catch a flip
 }
 
+// A probe pushed straight down into the top of a narrow wall: the coherent
+// answer keeps pushing up (the local optimum it follows) while the shorter
+// escape, sideways off the wall (half the wall plus half the probe, 0.07 m),
+// lies in another basin that no local update reaches. The cross-check, spread
+// over the queries, finds it once the up answer has grown past it, and
+// keeps every later answer within the check's growth of it: after the
+// switch the coherent answer sticks to the wall's top corner and drifts up
+// with the probe (the localised half-spaces cannot express "above the top
+// OR beside the wall"), and the check brings it back.
+TEST(PolyDepth, CoherentAnswerThatDriftsDeepIsCrossCheckedToTheShorterEscape) {
+  Model P = CollisionModel::Build(MakeBox(Vector3(0.05, 0.05, 0.05)));
+  Model S = CollisionModel::Build(MakeBox(Vector3(0.02, 0.5, 0.5)));
+  PolyDepthSolver solver(P, S);
+  const Isometry3 X_WS = Pose(Vector3::Zero());
+  constexpr double kSideways = 0.07;
+  // The check starts at 1.2x the last anchor plus 5e-3 of the pair's size
+  // (0.79 m) and takes 16 queries (1 mm each here) to cover its directions.
+  const double kLate = 1.2 * kSideways + 5e-3 * 0.8 + 0.016 + 0.002;
+  int colliding = 0, checked = 0, sideways = 0;
+  for (double up = -0.01; up < 0.25; up += 0.001) {
+    // `up`: how far the probe's bottom face is below the wall's top face.
+    const Isometry3 X_WP = Pose(Vector3(0.0, 0.1, 0.5 + 0.05 - up));
+    const PenetrationResult r = solver.Solve(X_WP, X_WS, true);
+    if (!r.in_collision) continue;
+    ++colliding;
+    ASSERT_TRUE(r.valid) << "up=" << up;
+    checked += r.cross_checked;
+    EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, r)) << "up=" << up;
+    EXPECT_LE(r.depth, up + 1e-6) << "deeper than the way it came, up=" << up;
+    if (sideways == 0 && r.normal_W.z() > 0.999) {
+      EXPECT_NEAR(r.depth, up, 1e-6) << "up=" << up;  // exact on the way down
+      EXPECT_LE(r.depth, kLate) << "still pushing up at up=" << up;
+    } else {
+      if (sideways++ == 0) EXPECT_NEAR(r.depth, kSideways, 1e-6) << "switched at up=" << up;
+      EXPECT_GT(std::abs(r.normal_W.x()), 0.7) << "up=" << up;
+      EXPECT_LE(r.depth, kLate) << "drifted at up=" << up;
+    }
+  }
+  EXPECT_GT(colliding, 240);
+  EXPECT_GT(checked, 0);
+  EXPECT_GT(sideways, 100);
+}
+
 // Along a continuous path, coherent answers stay valid, exact along their own
 // direction and within 15% of the best escape on their side (PolyDepth is a
 // local method: warm-started, it can stop in a shallow local minimum; the
