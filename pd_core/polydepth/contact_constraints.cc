@@ -33,6 +33,9 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
   out->clear();
   bool free = true;
   const double dist2 = distance * distance;
+  // Plane distances beyond this prove a pair farther than `distance` (the
+  // slack keeps round-off from dropping a pair the exact tests would keep).
+  const double far = distance * (1.0 + 1e-9) + 1e-12 * pair.size();
   // A feature pair on the wrong side by more than this is not a touching pair.
   const double below = 1e-9 * pair.size();
   const auto& own_P = pair.P.owned_features();
@@ -72,14 +75,29 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
         Vector3 p[3], s[3];
         pair.ProbeTriangle(tp, q_S, p);
         pair.SceneTriangle(ts, s);
+        const Vector3& nS = normals_S[ts];
+        const Vector3 nP = pair.X_SP.R_SP * normals_P[tp];
+        // Each triangle's vertices against the other's plane (unit normals;
+        // zero for degenerate triangles, whose plane decides nothing). A
+        // triangle wholly on one side of the other's plane, farther than
+        // `distance`, is farther than that from every feature of it: no
+        // constraint and no intersection (most pairs of a leaf-pair list).
+        double hP[3], hS[3];
+        for (int k = 0; k < 3; ++k) {
+          hP[k] = nS.dot(p[k] - s[0]);
+          hS[k] = nP.dot(s[k] - p[0]);
+        }
+        auto beyond = [far](const double* h) {
+          return (h[0] > far && h[1] > far && h[2] > far) ||
+                 (h[0] < -far && h[1] < -far && h[2] < -far);
+        };
+        if (beyond(hP) || beyond(hS)) return true;
         if (test_intersection && TrianglesIntersect(p[0], p[1], p[2], s[0], s[1], s[2])) {
           free = false;
           if (witness) *witness = {tp, ts};
           return false;
         }
         const uint8_t op = own_P[tp], os = own_S[ts];
-        const Vector3& nS = normals_S[ts];
-        const Vector3 nP = pair.X_SP.R_SP * normals_P[tp];
         for (int k = 0; k < 3; ++k) {
           if ((op & (1u << k)) && !nS.isZero()) {
             const Vector3 cp = ClosestPointOnTriangle(p[k], s[0], s[1], s[2]);
