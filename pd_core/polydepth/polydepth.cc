@@ -50,6 +50,17 @@ constexpr double kListMaxReach = 2.0;
 // No list is built for a query that would need it wider than this many
 // times its usual radius.
 constexpr double kListMaxNeed = 2.0;
+// A list is sized for about this many entries where the contact is dense
+// (see the list block in Solve): it bounds a rebuild's work and the list's
+// memory (48 B per entry). Below it a rebuild's cost is set by the leaves,
+// not the reach: leaf boxes are several times the radius (bull_bunny: ~7 box
+// tests per entry, 89% of them on boxes of half-diagonal under 16 radii), so
+// a coarse front or front tracking would save little. Tried and dropped:
+// building the next list ahead in slices over the queries the current one
+// still covers (the lists built ahead sat worse, so more rebuilds, and the
+// slices landed on queries with work of their own: p99 and max work up on
+// knot1_camel and fandisk_elephant).
+constexpr double kListMaxEntries = 2000.0;
 // A cross-check of a coherent answer probes this many directions around the
 // query, this many per query (spread over queries so no query pays for the
 // whole check), each at this fraction of the coherent answer's length; a
@@ -309,8 +320,19 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       // Sliding: centre the new list ahead along the motion, where the
       // coming queries will be, so it lasts longer than one centred here.
       const Vector3 v = pair.X_SP.p_SP - s.previous_X_SP.p_SP;
-      const double reach = std::clamp(kListTicks * motion, options_.candidate_radius * size,
-                                      kListMaxReach * options_.candidate_radius * size);
+      double reach = std::clamp(kListTicks * motion, options_.candidate_radius * size,
+                                kListMaxReach * options_.candidate_radius * size);
+      // A dense contact (a broad flat patch) holds many leaf pairs per
+      // radius squared: judged by the list it replaces, the reach shrinks to
+      // about kListMaxEntries entries (not below candidate_radius). Such a
+      // list costs about five box tests per entry to build, and the CCD
+      // counts every entry of the prefix it walks.
+      const double entries = static_cast<double>(s.candidates.entries().size());
+      if (entries > kListMaxEntries && s.candidates.radius() > 0.0) {
+        const double capped =
+            s.candidates.radius() * std::sqrt(kListMaxEntries / entries) - need;
+        reach = std::max(options_.candidate_radius * size, std::min(reach, capped));
+      }
       const double lead = have_prediction && v.norm() > 0.0 ? kListLead * reach : 0.0;
       const Vector3 build_center = lead > 0.0 ? Vector3(center + lead * v.normalized()) : center;
       s.candidates.Build(pair, build_center, reach + need);
