@@ -70,17 +70,29 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
     const double start_displacement = list->Displacement(pair, offset_S);
     const double sweep_len = sweep_S.norm();
     double s_part = std::min(covered, 0.05 * list->radius() / std::max(sweep_len, 1e-300));
+    // The probe's motion since the list's build at the sweep's start; along
+    // the sweep it adds s * sweep_S (same rotation bound).
+    Vector3 shift_from;
+    double rot = 0.0;
+    list->MotionSinceBuild(pair, offset_S, &shift_from, &rot);
     for (;;) {
       s_best = s_part;
       const double displacement = start_displacement + s_part * sweep_len;
       const int n = list->NearCount(0.0, displacement);
-      if (pair.counters) pair.counters->box_tests += n;
+      const Vector3 shift_to = shift_from + s_part * sweep_S;
+      int64_t tested = 0;
       for (int k = 0; k < n; ++k) {
         const CandidatePairs::Entry& e = list->entries()[k];
+        // Along the entry's separating axis first (a dot product): the
+        // swept probe leaf stays at least this far from the scene leaf.
+        if (e.axis_gap + std::min(e.axis_S.dot(shift_from), e.axis_S.dot(shift_to)) - rot > 0.0)
+          continue;
+        ++tested;
         if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is],
                                     sweep_S, s_best, &lo, &hi))
           leaf_contacts(e.ip, e.is);
       }
+      if (pair.counters) pair.counters->box_tests += tested;
       if (hit) return s_best;
       if (s_part >= covered) break;
       s_part = std::min(covered, 4.0 * s_part);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pd_core/polydepth/support_plane_starts.h"
+#include "pd_core/proximity/candidate_pairs.h"
 #include "pd_core/proximity/box_overlap.h"
 #include "pd_core/proximity/bvh_pair_descent.h"
 #include "pd_core/proximity/mesh_collision.h"
@@ -134,6 +135,60 @@ TEST(TranslationalCcd, FirstContactEqualsBruteForceOverAllTrianglePairsOnRealMes
   }
   EXPECT_EQ(sweeps, 16);
   EXPECT_GE(contacts, 8);  // every start-to-query sweep touches
+}
+
+// Short sweeps near the contact, after the probe moved and turned since a
+// leaf-pair list was built there: the CCD walks the list (skipping entries
+// their separating axis keeps apart) and finds the first contact brute force
+// over all triangle pairs finds.
+TEST(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterMotion) {
+  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
+  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
+  const Model P = test::LoadCentredModel(kMeshDir + "/cow.off"),
+              S = test::LoadCentredModel(kMeshDir + "/knot1.off");
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> g;
+  int listed = 0, contacts = 0;
+  for (int k = 0; k < 4; ++k) {
+    const Isometry3 X_WP = CollidingPose(P, S, rng);
+    const ModelPair pair(*P, *S, X_WP, Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    // A configuration just off the contact: a start out-projected to it.
+    const Vector3 from = starts[0].q_S;
+    const double s = FirstContactAlongTranslation(pair, from, -from);
+    ASSERT_GT(s, 0.0);
+    const Vector3 q_c = from - (s - 1e-3) * from;
+    const double radius = 0.03 * pair.size();
+    CandidatePairs list;
+    list.Build(pair, q_c, radius);
+    // The probe moves and turns a little (its points by a few percent of
+    // the radius), then sweeps from near q_c in random directions.
+    Isometry3 X_WP2 = X_WP;
+    X_WP2.linear() = X_WP.linear() * Eigen::AngleAxisd(0.004, Vector3(g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
+    X_WP2.translation() += 0.1 * radius * Vector3(g(rng), g(rng), g(rng)).normalized();
+    ModelPair moved(*P, *S, X_WP2, Isometry3::Identity());
+    moved.candidates = &list;
+    ModelPair plain(*P, *S, X_WP2, Isometry3::Identity());
+    for (int i = 0; i < 12; ++i) {
+      const Vector3 start = q_c + 0.2 * radius * Vector3(g(rng), g(rng), g(rng)).normalized();
+      if (InCollision(plain, start)) continue;
+      const Vector3 sweep = 0.3 * radius * Vector3(g(rng), g(rng), g(rng)).normalized() +
+                            (i % 2 ? Vector3(0.3 * radius * (q_c - start).normalized()) : Vector3::Zero());
+      if (list.CoveredFraction(moved, start, sweep, 0.0) <= 0.0) continue;
+      ++listed;
+      const double brute = BruteForceFirstContact(plain, start, sweep);
+      const double ccd = FirstContactAlongTranslation(moved, start, sweep);
+      if (brute < 0) {
+        EXPECT_LT(ccd, 0) << "pose " << k << " sweep " << i;
+        continue;
+      }
+      ++contacts;
+      EXPECT_NEAR(ccd, brute, 1e-12) << "pose " << k << " sweep " << i;
+    }
+  }
+  EXPECT_GE(listed, 16) << contacts;  // the list, not the descent, answered these
+  EXPECT_GE(contacts, 4) << listed;   // and some of them touch
 }
 
 TEST(TranslationalCcd, BestFirstDescentFindsTheSameContactWithFewerBoxTestsOnLongSweeps) {
