@@ -150,6 +150,11 @@ struct PolyDepthSolver::Impl {
 
   // Where `constraints` were last localised (they are reused for regions).
   Vector3 constraints_q_S = Vector3::Constant(1e300);
+  // The localisation Iterate made at the best answer when it was the best
+  // (kept as collected, before the margin): the pocket check and the
+  // result's contacts need it after later starts localised elsewhere.
+  std::vector<ContactConstraint> best_constraints;
+  Vector3 best_constraints_q_S = Vector3::Constant(1e300);
   // Best verified-free contact configuration of the current query.
   Vector3 best_q_S = Vector3::Zero();
   double best_norm = 0.0;
@@ -174,6 +179,10 @@ struct PolyDepthSolver::Impl {
     // Localise the contact space at q_c and in-project toward the query.
     CollectContactConstraints(pair, q_c, contact_distance, &s.constraints);
     s.constraints_q_S = q_c;
+    if (q_c == s.best_q_S) {
+      s.best_constraints = s.constraints;
+      s.best_constraints_q_S = q_c;
+    }
     if (s.constraints.empty()) break;
     // Aim strictly inside free space: an exactly touching target is
     // ambiguous under round-off, a target `margin` clear is not.
@@ -231,6 +240,7 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
       impl_(std::make_unique<Impl>()) {
   impl_->rng.seed(options_.seed);
   impl_->constraints.reserve(1024);
+  impl_->best_constraints.reserve(1024);
   impl_->previous_constraints.reserve(1024);
   impl_->unit_constraints.reserve(1024);
   impl_->starts.reserve(64);
@@ -269,6 +279,18 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   const double contact_distance = options_.contact_tol * size;
   s.iterations = 0;
   s.constraints_q_S = Vector3::Constant(1e300);
+  s.best_constraints_q_S = Vector3::Constant(1e300);
+  // Localises at the best answer unless `constraints` hold it already; the
+  // same localisation kept from Iterate when there is one (same pair, same
+  // configuration: the same constraints).
+  auto localise_at_best = [&] {
+    if (s.constraints_q_S == s.best_q_S) return;
+    if (s.best_constraints_q_S == s.best_q_S)
+      s.constraints = s.best_constraints;
+    else
+      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
+    s.constraints_q_S = s.best_q_S;
+  };
   auto finish = [&] {
     result.box_tests = s.counters.box_tests;
     result.triangle_tests = s.counters.triangle_tests;
@@ -581,10 +603,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // thicknesses deeper, not a different answer.
   const double thickness = options_.pocket_thickness * size;
   if (valid && thickness > 0.0 && s.best_norm > 0.0) {
-    if (s.constraints_q_S != s.best_q_S) {
-      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
-      s.constraints_q_S = s.best_q_S;
-    }
+    localise_at_best();
     const Vector3 n = s.best_q_S / s.best_norm;
     const bool suspect =
         std::any_of(s.constraints.begin(), s.constraints.end(), [&](const ContactConstraint& c) {
@@ -640,8 +659,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     result.depth = s.best_norm;
     result.normal_W = s.best_norm > 0 ? Vector3(result.translation_W / s.best_norm)
                                       : Vector3::Zero();
-    if (s.constraints_q_S != s.best_q_S)
-      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
+    localise_at_best();
     result.num_contacts = static_cast<int>(s.constraints.size());
     GroupContactRegions(s.constraints, s.best_q_S, X_WS, 0.1 * size, &result);
   }
