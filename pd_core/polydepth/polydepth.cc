@@ -115,6 +115,7 @@ struct PolyDepthSolver::Impl {
   std::vector<ContactConstraint> constraints;
   MinNormScratch qp;
   std::vector<Start> starts;
+  std::vector<double> landed_norms;  // cold: landing norms of the starts out-projected exactly
   std::vector<SupportPlaneStart> support_starts;
   std::vector<Vector3> inner_starts;  // cold: free probes below the best answer
   std::mt19937_64 rng;
@@ -505,12 +506,38 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       s.starts.push_back({SupportPlaneTranslation(pair, u.normalized()), Initializer::kRandom});
     }
     // Out-project every start once, then iterate from the closest few.
+    // Once num_iterated starts have landed, a start's CCD stops as soon as
+    // it has a contact before where it would land closer than the
+    // num_iterated-th closest so far: that start is not iterated, so its
+    // exact landing point is not needed (the iterated ones are the same).
+    s.landed_norms.clear();
     for (Start& st : s.starts) {
       st.contact_norm = 1e300;
-      bool touched = false;
       ++result.starts;
-      st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched);
-      st.contact_norm = touched ? st.contact_q_S.norm() : 1e300;
+      const Vector3 d = -st.q_S;
+      const double len = d.norm();
+      if (len <= 0.0) {
+        st.contact_q_S = st.q_S;
+        continue;
+      }
+      double s_stop = -1.0;
+      if (num_iterated > 0 && static_cast<int>(s.landed_norms.size()) >= num_iterated) {
+        std::nth_element(s.landed_norms.begin(), s.landed_norms.begin() + (num_iterated - 1),
+                         s.landed_norms.end());
+        // Landing at s lies (1 - s + margin / len) |q_S| from the query
+        // (OutProject); contacts before s_stop land farther than the
+        // threshold (by a relative 1e-9, against round-off).
+        const double threshold = s.landed_norms[num_iterated - 1];
+        s_stop = 1.0 + margin / len - threshold / len - 1e-9;
+      }
+      const double t = FirstContactAlongTranslation(pair, st.q_S, d, s_stop);
+      if (t < 0.0) {
+        st.contact_q_S = Vector3::Zero();
+        continue;
+      }
+      st.contact_q_S = st.q_S + std::max(0.0, t - margin / len) * d;
+      st.contact_norm = st.contact_q_S.norm();
+      if (t >= s_stop) s.landed_norms.push_back(st.contact_norm);
     }
     std::sort(s.starts.begin(), s.starts.end(),
               [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });

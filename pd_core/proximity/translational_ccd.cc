@@ -64,18 +64,19 @@ void TriangleFirstContact(const ModelPair& pair, int tp, int ts, const Vector3& 
 }  // namespace
 
 double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset_S,
-                                    const Vector3& sweep_S) {
+                                    const Vector3& sweep_S, double s_stop) {
   const Bvh& bvh_P = pair.P.bvh();
   const Bvh& bvh_S = pair.S.bvh();
   if (bvh_P.empty() || bvh_S.empty()) return -1.0;
   double s_best = 1.0;
   bool hit = false;
   double lo, hi;
+  // False once a contact before s_stop is known (the caller's early stop).
   auto leaf_contacts = [&](int ip, int is) {
     return ForEachTrianglePair(bvh_P, bvh_S, ip, is, [&](int tp, int ts) {
       if (pair.counters) ++pair.counters->triangle_tests;
       TriangleFirstContact(pair, tp, ts, offset_S, sweep_S, &s_best, &hit);
-      return true;
+      return !(hit && s_best < s_stop);
     });
   };
   const CandidatePairs* list = pair.candidates;
@@ -111,8 +112,9 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
           continue;
         ++tested;
         if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is],
-                                    sweep_S, s_best, &lo, &hi))
-          leaf_contacts(e.ip, e.is);
+                                    sweep_S, s_best, &lo, &hi) &&
+            !leaf_contacts(e.ip, e.is))
+          break;
       }
       if (pair.counters) pair.counters->box_tests += tested;
       if (hit) return s_best;

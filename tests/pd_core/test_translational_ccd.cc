@@ -187,6 +187,43 @@ TEST(TranslationalCcd, FirstContactFromTouchingConfigurationsEqualsBruteForce) {
   EXPECT_GE(near_start, 10) << contacts;  // some within 1e-3 of the size of the start
 }
 
+// The early stop for callers that need the first contact only at or after
+// s_stop (PolyDepth ranking its cold starts): a first contact at or after
+// s_stop is found exactly; one before it is reported as some contact before
+// s_stop, never earlier than the first (brute force over all triangle pairs).
+TEST(TranslationalCcd, EarlyStopBeforeSStopReportsAContactAndIsExactAfterIt) {
+  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
+  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
+  const Model P = test::LoadCentredModel(kMeshDir + "/cow.off"),
+              S = test::LoadCentredModel(kMeshDir + "/knot1.off");
+  std::mt19937_64 rng(17);
+  int exact = 0, early = 0;
+  for (int k = 0; k < 3; ++k) {
+    const ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    for (int i : {0, 2, 4}) {
+      const Vector3 from = starts[i].q_S;
+      const double brute = BruteForceFirstContact(pair, from, -from);
+      ASSERT_GT(brute, 0.0) << "pose " << k << " start " << i;
+      for (double f : {0.5, 0.999, 1.001, 2.0}) {
+        const double s_stop = f * brute;
+        const double s = FirstContactAlongTranslation(pair, from, -from, s_stop);
+        if (brute >= s_stop) {
+          ++exact;
+          EXPECT_NEAR(s, brute, 1e-12) << "pose " << k << " start " << i << " f " << f;
+        } else {
+          ++early;
+          EXPECT_GE(s, brute - 1e-12) << "pose " << k << " start " << i << " f " << f;
+          EXPECT_LT(s, s_stop) << "pose " << k << " start " << i << " f " << f;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(exact, 18);
+  EXPECT_EQ(early, 18);
+}
+
 // Short sweeps near the contact, after the probe moved and turned since a
 // leaf-pair list was built there: the CCD walks the list (skipping entries
 // their separating axis keeps apart) and finds the first contact brute force
