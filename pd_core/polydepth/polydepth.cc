@@ -115,6 +115,7 @@ struct PolyDepthSolver::Impl {
   std::vector<ContactConstraint> constraints;
   MinNormScratch qp;
   std::vector<Start> starts;
+  std::vector<double> landed_norms;  // cold: landing norms of the starts out-projected exactly
   std::vector<SupportPlaneStart> support_starts;
   std::vector<Vector3> inner_starts;  // cold: free probes below the best answer
   std::mt19937_64 rng;
@@ -151,6 +152,11 @@ struct PolyDepthSolver::Impl {
 
   // Where `constraints` were last localised (they are reused for regions).
   Vector3 constraints_q_S = Vector3::Constant(1e300);
+  // The localisation Iterate made at the best answer when it was the best
+  // (kept as collected, before the margin): the pocket check and the
+  // result's contacts need it after later starts localised elsewhere.
+  std::vector<ContactConstraint> best_constraints;
+  Vector3 best_constraints_q_S = Vector3::Constant(1e300);
   // Best verified-free contact configuration of the current query.
   Vector3 best_q_S = Vector3::Zero();
   double best_norm = 0.0;
@@ -175,6 +181,10 @@ struct PolyDepthSolver::Impl {
     // Localise the contact space at q_c and in-project toward the query.
     CollectContactConstraints(pair, q_c, contact_distance, &s.constraints);
     s.constraints_q_S = q_c;
+    if (q_c == s.best_q_S) {
+      s.best_constraints = s.constraints;
+      s.best_constraints_q_S = q_c;
+    }
     if (s.constraints.empty()) break;
     // Aim strictly inside free space: an exactly touching target is
     // ambiguous under round-off, a target `margin` clear is not.
@@ -232,6 +242,7 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
       impl_(std::make_unique<Impl>()) {
   impl_->rng.seed(options_.seed);
   impl_->constraints.reserve(1024);
+  impl_->best_constraints.reserve(1024);
   impl_->previous_constraints.reserve(1024);
   impl_->unit_constraints.reserve(1024);
   impl_->starts.reserve(64);
@@ -270,6 +281,18 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   const double contact_distance = options_.contact_tol * size;
   s.iterations = 0;
   s.constraints_q_S = Vector3::Constant(1e300);
+  s.best_constraints_q_S = Vector3::Constant(1e300);
+  // Localises at the best answer unless `constraints` hold it already; the
+  // same localisation kept from Iterate when there is one (same pair, same
+  // configuration: the same constraints).
+  auto localise_at_best = [&] {
+    if (s.constraints_q_S == s.best_q_S) return;
+    if (s.best_constraints_q_S == s.best_q_S)
+      s.constraints = s.best_constraints;
+    else
+      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
+    s.constraints_q_S = s.best_q_S;
+  };
   auto finish = [&] {
     result.box_tests = s.counters.box_tests;
     result.triangle_tests = s.counters.triangle_tests;
@@ -484,12 +507,38 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       s.starts.push_back({SupportPlaneTranslation(pair, u.normalized()), Initializer::kRandom});
     }
     // Out-project every start once, then iterate from the closest few.
+    // Once num_iterated starts have landed, a start's CCD stops as soon as
+    // it has a contact before where it would land closer than the
+    // num_iterated-th closest so far: that start is not iterated, so its
+    // exact landing point is not needed (the iterated ones are the same).
+    s.landed_norms.clear();
     for (Start& st : s.starts) {
       st.contact_norm = 1e300;
-      bool touched = false;
       ++result.starts;
-      st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched);
-      st.contact_norm = touched ? st.contact_q_S.norm() : 1e300;
+      const Vector3 d = -st.q_S;
+      const double len = d.norm();
+      if (len <= 0.0) {
+        st.contact_q_S = st.q_S;
+        continue;
+      }
+      double s_stop = -1.0;
+      if (num_iterated > 0 && static_cast<int>(s.landed_norms.size()) >= num_iterated) {
+        std::nth_element(s.landed_norms.begin(), s.landed_norms.begin() + (num_iterated - 1),
+                         s.landed_norms.end());
+        // Landing at s lies (1 - s + margin / len) |q_S| from the query
+        // (OutProject); contacts before s_stop land farther than the
+        // threshold (by a relative 1e-9, against round-off).
+        const double threshold = s.landed_norms[num_iterated - 1];
+        s_stop = 1.0 + margin / len - threshold / len - 1e-9;
+      }
+      const double t = FirstContactAlongTranslation(pair, st.q_S, d, s_stop);
+      if (t < 0.0) {
+        st.contact_q_S = Vector3::Zero();
+        continue;
+      }
+      st.contact_q_S = st.q_S + std::max(0.0, t - margin / len) * d;
+      st.contact_norm = st.contact_q_S.norm();
+      if (t >= s_stop) s.landed_norms.push_back(st.contact_norm);
     }
     std::sort(s.starts.begin(), s.starts.end(),
               [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });
@@ -589,10 +638,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // thicknesses deeper, not a different answer.
   const double thickness = options_.pocket_thickness * size;
   if (valid && thickness > 0.0 && s.best_norm > 0.0) {
-    if (s.constraints_q_S != s.best_q_S) {
-      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
-      s.constraints_q_S = s.best_q_S;
-    }
+    localise_at_best();
     const Vector3 n = s.best_q_S / s.best_norm;
     const bool suspect =
         std::any_of(s.constraints.begin(), s.constraints.end(), [&](const ContactConstraint& c) {
@@ -648,8 +694,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     result.depth = s.best_norm;
     result.normal_W = s.best_norm > 0 ? Vector3(result.translation_W / s.best_norm)
                                       : Vector3::Zero();
-    if (s.constraints_q_S != s.best_q_S)
-      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
+    localise_at_best();
     result.num_contacts = static_cast<int>(s.constraints.size());
     GroupContactRegions(s.constraints, s.best_q_S, X_WS, 0.1 * size, &result);
   }

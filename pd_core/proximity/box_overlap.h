@@ -152,7 +152,8 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
   auto clip = [&](double center, double rate, double radius) {
     // |center + s * rate| <= radius
     if (std::abs(rate) < 1e-300) return std::abs(center) <= radius;
-    double t0 = (-radius - center) / rate, t1 = (radius - center) / rate;
+    const double inv = 1.0 / rate;  // one division per axis
+    double t0 = (-radius - center) * inv, t1 = (radius - center) * inv;
     if (t0 > t1) std::swap(t0, t1);
     lo = std::max(lo, t0);
     hi = std::min(hi, t1);

@@ -17,6 +17,28 @@ void TriangleFirstContact(const ModelPair& pair, int tp, int ts, const Vector3& 
   Vector3 p[3], s[3];
   pair.ProbeTriangle(tp, offset_S, p);
   pair.SceneTriangle(ts, s);
+  // Every event puts a point of each triangle on the other's plane. Along
+  // the sweep, each triangle's vertices move off the other's plane at one
+  // common rate, so the triangles can only touch while the nearest vertex
+  // has not passed the plane and the farthest has reached it: an empty
+  // s-interval in [0, *s_best] skips the pair (most pairs of a leaf pair
+  // near a contact). Degenerate triangles (zero normal) are never skipped;
+  // `slack` keeps round-off from skipping a pair the exact tests would keep.
+  const double slack = 1e-9 * pair.size();
+  auto apart = [&](const Vector3& n, const Vector3* v, const Vector3& o, double rate) {
+    double lo = 1e300, hi = -1e300;
+    for (int k = 0; k < 3; ++k) {
+      const double h = n.dot(v[k] - o);
+      lo = std::min(lo, h);
+      hi = std::max(hi, h);
+    }
+    const double move = rate * *s_best;
+    return lo + std::min(0.0, move) > slack || hi + std::max(0.0, move) < -slack;
+  };
+  const Vector3& n_S = pair.S.face_normals()[ts];
+  if (apart(n_S, p, s[0], n_S.dot(sweep_S))) return;
+  const Vector3 n_P = pair.X_SP.R_SP * pair.P.face_normals()[tp];
+  if (apart(n_P, s, p[0], -n_P.dot(sweep_S))) return;
   const uint8_t op = pair.P.owned_features()[tp], os = pair.S.owned_features()[ts];
   auto consider = [&](double t) {
     if (t >= 0 && t <= *s_best) {
@@ -42,18 +64,19 @@ void TriangleFirstContact(const ModelPair& pair, int tp, int ts, const Vector3& 
 }  // namespace
 
 double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset_S,
-                                    const Vector3& sweep_S) {
+                                    const Vector3& sweep_S, double s_stop) {
   const Bvh& bvh_P = pair.P.bvh();
   const Bvh& bvh_S = pair.S.bvh();
   if (bvh_P.empty() || bvh_S.empty()) return -1.0;
   double s_best = 1.0;
   bool hit = false;
   double lo, hi;
+  // False once a contact before s_stop is known (the caller's early stop).
   auto leaf_contacts = [&](int ip, int is) {
     return ForEachTrianglePair(bvh_P, bvh_S, ip, is, [&](int tp, int ts) {
       if (pair.counters) ++pair.counters->triangle_tests;
       TriangleFirstContact(pair, tp, ts, offset_S, sweep_S, &s_best, &hit);
-      return true;
+      return !(hit && s_best < s_stop);
     });
   };
   const CandidatePairs* list = pair.candidates;
@@ -89,8 +112,9 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
           continue;
         ++tested;
         if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is],
-                                    sweep_S, s_best, &lo, &hi))
-          leaf_contacts(e.ip, e.is);
+                                    sweep_S, s_best, &lo, &hi) &&
+            !leaf_contacts(e.ip, e.is))
+          break;
       }
       if (pair.counters) pair.counters->box_tests += tested;
       if (hit) return s_best;

@@ -137,6 +137,93 @@ TEST(TranslationalCcd, FirstContactEqualsBruteForceOverAllTrianglePairsOnRealMes
   EXPECT_GE(contacts, 8);  // every start-to-query sweep touches
 }
 
+// Sweeps leaving a touching configuration (PolyDepth's out-projection after
+// an in-projection): most triangle pairs of the leaf pairs there lie near
+// each other's planes, where the CCD's plane prefilter (a pair whose
+// triangles stay on one side of each other's plane over the sweep is
+// skipped) must keep every pair that touches. Short to long sweeps, in
+// random directions and toward / along the contact.
+TEST(TranslationalCcd, FirstContactFromTouchingConfigurationsEqualsBruteForce) {
+  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
+  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
+  const Model P = test::LoadCentredModel(kMeshDir + "/knot1.off"),
+              S = test::LoadCentredModel(kMeshDir + "/cow.off");
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> g;
+  int sweeps = 0, contacts = 0, near_start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    for (int i : {0, 3}) {
+      const Vector3 from = starts[i].q_S;
+      const double s = FirstContactAlongTranslation(pair, from, -from);
+      ASSERT_GT(s, 0.0);
+      // Backed off by PolyDepth's margin (1e-8 of the size).
+      const Vector3 q_c = from - (s - 1e-8 * pair.size() / from.norm()) * from;
+      ASSERT_FALSE(InCollision(pair, q_c));
+      const Vector3 toward = -from.normalized();
+      for (double len : {1e-4, 1e-3, 1e-2, 1e-1}) {
+        const Vector3 u = Vector3(g(rng), g(rng), g(rng)).normalized();
+        const Vector3 along = (u - u.dot(toward) * toward).normalized();
+        for (const Vector3& dir : {u, toward, along, Vector3((along + 0.01 * toward).normalized())}) {
+          const Vector3 sweep = len * pair.size() * dir;
+          const double ccd = FirstContactAlongTranslation(pair, q_c, sweep);
+          const double brute = BruteForceFirstContact(pair, q_c, sweep);
+          ++sweeps;
+          if (brute < 0) {
+            EXPECT_LT(ccd, 0) << "pose " << k << " start " << i << " len " << len;
+            continue;
+          }
+          ++contacts;
+          if (brute * len < 1e-3) ++near_start;
+          EXPECT_NEAR(ccd, brute, 1e-12) << "pose " << k << " start " << i << " len " << len;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(sweeps, 96);
+  EXPECT_GE(contacts, 30) << sweeps;     // many touch
+  EXPECT_GE(near_start, 10) << contacts;  // some within 1e-3 of the size of the start
+}
+
+// The early stop for callers that need the first contact only at or after
+// s_stop (PolyDepth ranking its cold starts): a first contact at or after
+// s_stop is found exactly; one before it is reported as some contact before
+// s_stop, never earlier than the first (brute force over all triangle pairs).
+TEST(TranslationalCcd, EarlyStopBeforeSStopReportsAContactAndIsExactAfterIt) {
+  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
+  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
+  const Model P = test::LoadCentredModel(kMeshDir + "/cow.off"),
+              S = test::LoadCentredModel(kMeshDir + "/knot1.off");
+  std::mt19937_64 rng(17);
+  int exact = 0, early = 0;
+  for (int k = 0; k < 3; ++k) {
+    const ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    for (int i : {0, 2, 4}) {
+      const Vector3 from = starts[i].q_S;
+      const double brute = BruteForceFirstContact(pair, from, -from);
+      ASSERT_GT(brute, 0.0) << "pose " << k << " start " << i;
+      for (double f : {0.5, 0.999, 1.001, 2.0}) {
+        const double s_stop = f * brute;
+        const double s = FirstContactAlongTranslation(pair, from, -from, s_stop);
+        if (brute >= s_stop) {
+          ++exact;
+          EXPECT_NEAR(s, brute, 1e-12) << "pose " << k << " start " << i << " f " << f;
+        } else {
+          ++early;
+          EXPECT_GE(s, brute - 1e-12) << "pose " << k << " start " << i << " f " << f;
+          EXPECT_LT(s, s_stop) << "pose " << k << " start " << i << " f " << f;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(exact, 18);
+  EXPECT_EQ(early, 18);
+}
+
 // Short sweeps near the contact, after the probe moved and turned since a
 // leaf-pair list was built there: the CCD walks the list (skipping entries
 // their separating axis keeps apart) and finds the first contact brute force
