@@ -101,11 +101,22 @@ Isometry3 CollidingPose(const Model& P, const Model& S, std::mt19937_64& rng) {
   }
 }
 
-TEST(TranslationalCcd, FirstContactEqualsBruteForceOverAllTrianglePairsOnRealMeshes) {
-  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
-  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
-  const Model P = test::LoadCentredModel(kMeshDir + "/cow.off"),
-              S = test::LoadCentredModel(kMeshDir + "/knot1.off");
+// The real meshes these tests sweep (CGAL's, from scripts/fetch_meshes.sh),
+// centred and scaled to a 0.1 m bounding sphere, loaded once per test.
+class TranslationalCcd : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    for (const char* name : {"cow", "knot1", "camel"})
+      PD_REQUIRE_FILE(kMeshDir + "/" + name + ".off", "run scripts/fetch_meshes.sh");
+    cow_ = test::LoadCentredModel(kMeshDir + "/cow.off");
+    knot1_ = test::LoadCentredModel(kMeshDir + "/knot1.off");
+    camel_ = test::LoadCentredModel(kMeshDir + "/camel.off");
+  }
+  Model cow_, knot1_, camel_;
+};
+
+TEST_F(TranslationalCcd, FirstContactEqualsBruteForceOverAllTrianglePairsOnRealMeshes) {
+  const Model P = cow_, S = knot1_;
   std::mt19937_64 rng(7);
   std::normal_distribution<double> g;
   int contacts = 0, sweeps = 0;
@@ -143,11 +154,8 @@ TEST(TranslationalCcd, FirstContactEqualsBruteForceOverAllTrianglePairsOnRealMes
 // triangles stay on one side of each other's plane over the sweep is
 // skipped) must keep every pair that touches. Short to long sweeps, in
 // random directions and toward / along the contact.
-TEST(TranslationalCcd, FirstContactFromTouchingConfigurationsEqualsBruteForce) {
-  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
-  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
-  const Model P = test::LoadCentredModel(kMeshDir + "/knot1.off"),
-              S = test::LoadCentredModel(kMeshDir + "/cow.off");
+TEST_F(TranslationalCcd, FirstContactFromTouchingConfigurationsEqualsBruteForce) {
+  const Model P = knot1_, S = cow_;
   std::mt19937_64 rng(13);
   std::normal_distribution<double> g;
   int sweeps = 0, contacts = 0, near_start = 0;
@@ -191,11 +199,8 @@ TEST(TranslationalCcd, FirstContactFromTouchingConfigurationsEqualsBruteForce) {
 // s_stop (PolyDepth ranking its cold starts): a first contact at or after
 // s_stop is found exactly; one before it is reported as some contact before
 // s_stop, never earlier than the first (brute force over all triangle pairs).
-TEST(TranslationalCcd, EarlyStopBeforeSStopReportsAContactAndIsExactAfterIt) {
-  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
-  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
-  const Model P = test::LoadCentredModel(kMeshDir + "/cow.off"),
-              S = test::LoadCentredModel(kMeshDir + "/knot1.off");
+TEST_F(TranslationalCcd, EarlyStopBeforeSStopReportsAContactAndIsExactAfterIt) {
+  const Model P = cow_, S = knot1_;
   std::mt19937_64 rng(17);
   int exact = 0, early = 0;
   for (int k = 0; k < 3; ++k) {
@@ -228,11 +233,8 @@ TEST(TranslationalCcd, EarlyStopBeforeSStopReportsAContactAndIsExactAfterIt) {
 // leaf-pair list was built there: the CCD walks the list (skipping entries
 // their separating axis keeps apart) and finds the first contact brute force
 // over all triangle pairs finds.
-TEST(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterMotion) {
-  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
-  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
-  const Model P = test::LoadCentredModel(kMeshDir + "/cow.off"),
-              S = test::LoadCentredModel(kMeshDir + "/knot1.off");
+TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterMotion) {
+  const Model P = cow_, S = knot1_;
   std::mt19937_64 rng(5);
   std::normal_distribution<double> g;
   int listed = 0, contacts = 0;
@@ -278,11 +280,8 @@ TEST(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterMot
   EXPECT_GE(contacts, 4) << listed;   // and some of them touch
 }
 
-TEST(TranslationalCcd, BestFirstDescentFindsTheSameContactWithFewerBoxTestsOnLongSweeps) {
-  PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
-  PD_REQUIRE_FILE(kMeshDir + "/camel.off", "run scripts/fetch_meshes.sh");
-  const Model P = test::LoadCentredModel(kMeshDir + "/knot1.off"),
-              S = test::LoadCentredModel(kMeshDir + "/camel.off");
+TEST_F(TranslationalCcd, BestFirstDescentFindsTheSameContactWithFewerBoxTestsOnLongSweeps) {
+  const Model P = knot1_, S = camel_;
   std::mt19937_64 rng(11);
   ProximityCounters depth_first, best_first;
   int sweeps = 0;
