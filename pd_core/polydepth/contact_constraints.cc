@@ -77,21 +77,12 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
         pair.SceneTriangle(ts, s);
         const Vector3& nS = normals_S[ts];
         const Vector3 nP = pair.X_SP.R_SP * normals_P[tp];
-        // Each triangle's vertices against the other's plane (unit normals;
-        // zero for degenerate triangles, whose plane decides nothing). A
-        // triangle wholly on one side of the other's plane, farther than
+        // A triangle wholly on one side of the other's plane, farther than
         // `distance`, is farther than that from every feature of it: no
         // constraint and no intersection (most pairs of a leaf-pair list).
-        double hP[3], hS[3];
-        for (int k = 0; k < 3; ++k) {
-          hP[k] = nS.dot(p[k] - s[0]);
-          hS[k] = nP.dot(s[k] - p[0]);
-        }
-        auto beyond = [far](const double* h) {
-          return (h[0] > far && h[1] > far && h[2] > far) ||
-                 (h[0] < -far && h[1] < -far && h[2] < -far);
-        };
-        if (beyond(hP) || beyond(hS)) return true;
+        if (TriangleStaysOffPlane(nS, s[0], p, 0.0, far) ||
+            TriangleStaysOffPlane(nP, p[0], s, 0.0, far))
+          return true;
         if (test_intersection && TrianglesIntersect(p[0], p[1], p[2], s[0], s[1], s[2])) {
           free = false;
           if (witness) *witness = {tp, ts};

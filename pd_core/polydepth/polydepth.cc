@@ -91,21 +91,27 @@ namespace {
 
 // Out-projection: from a free q_from toward q_to, the last free point before
 // first contact, backed off by `margin` (m) along the motion. Returns q_to if
-// the whole segment is free. *touched tells which.
+// the whole segment is free. *touched tells which. With `s_stop` (see
+// FirstContactAlongTranslation) a contact found before it ends the search:
+// *exact (if given) is false then, and the point returned lies before the
+// exact one.
 Vector3 OutProject(const ModelPair& pair, const Vector3& q_from, const Vector3& q_to,
-                   double margin, bool* touched) {
+                   double margin, bool* touched, double s_stop = -1.0,
+                   bool* exact = nullptr) {
   const Vector3 d = q_to - q_from;
   const double len = d.norm();
+  if (exact) *exact = true;
   if (len <= 0.0) {
     *touched = false;
     return q_to;
   }
-  const double s = FirstContactAlongTranslation(pair, q_from, d);
+  const double s = FirstContactAlongTranslation(pair, q_from, d, s_stop);
   if (s < 0) {
     *touched = false;
     return q_to;
   }
   *touched = true;
+  if (exact) *exact = s >= s_stop;
   return q_from + std::max(0.0, s - margin / len) * d;
 }
 
@@ -515,14 +521,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     for (Start& st : s.starts) {
       st.contact_norm = 1e300;
       ++result.starts;
-      const Vector3 d = -st.q_S;
-      const double len = d.norm();
-      if (len <= 0.0) {
-        st.contact_q_S = st.q_S;
-        continue;
-      }
+      const double len = st.q_S.norm();
       double s_stop = -1.0;
-      if (num_iterated > 0 && static_cast<int>(s.landed_norms.size()) >= num_iterated) {
+      if (len > 0.0 && num_iterated > 0 &&
+          static_cast<int>(s.landed_norms.size()) >= num_iterated) {
         std::nth_element(s.landed_norms.begin(), s.landed_norms.begin() + (num_iterated - 1),
                          s.landed_norms.end());
         // Landing at s lies (1 - s + margin / len) |q_S| from the query
@@ -531,14 +533,12 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         const double threshold = s.landed_norms[num_iterated - 1];
         s_stop = 1.0 + margin / len - threshold / len - 1e-9;
       }
-      const double t = FirstContactAlongTranslation(pair, st.q_S, d, s_stop);
-      if (t < 0.0) {
-        st.contact_q_S = Vector3::Zero();
-        continue;
-      }
-      st.contact_q_S = st.q_S + std::max(0.0, t - margin / len) * d;
+      bool touched = false, exact = true;
+      st.contact_q_S =
+          OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched, s_stop, &exact);
+      if (!touched) continue;
       st.contact_norm = st.contact_q_S.norm();
-      if (t >= s_stop) s.landed_norms.push_back(st.contact_norm);
+      if (exact) s.landed_norms.push_back(st.contact_norm);
     }
     std::sort(s.starts.begin(), s.starts.end(),
               [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });

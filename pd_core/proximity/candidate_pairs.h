@@ -7,6 +7,7 @@
 // most d + D: queries walk that prefix of the list alone, a few pairs near
 // the contact instead of a descent of both hierarchies, and every pair that
 // can touch is in the list while D + d stays below the radius.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +29,13 @@ class CandidatePairs {
     // without a box test.
     Vector3 axis_S;
     double axis_gap;
+    // True if, with the probe shifted by any point of the segment
+    // [shift_a_S, shift_b_S] plus rotation bound rot (m) since the build,
+    // the two leaves stay farther apart than `distance` along axis_S.
+    bool StaysApart(const Vector3& shift_a_S, const Vector3& shift_b_S, double rot,
+                    double distance) const {
+      return axis_gap + std::min(axis_S.dot(shift_a_S), axis_S.dot(shift_b_S)) - rot > distance;
+    }
   };
 
   CandidatePairs() { entries_.reserve(4096); }

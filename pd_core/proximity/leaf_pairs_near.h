@@ -45,8 +45,7 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
       int64_t tested = 0;
       for (int k = 0; k < n; ++k) {
         const CandidatePairs::Entry& e = entries[k];
-        if (e.axis_gap + std::min(e.axis_S.dot(shift_a), e.axis_S.dot(shift_b)) - rot > distance)
-          continue;
+        if (e.StaysApart(shift_a, shift_b, rot, distance)) continue;
         ++tested;
         if (!node_test(nodes_P[e.ip], nodes_S[e.is], &unused_key)) continue;
         if (!on_leaf_pair(e.ip, e.is)) break;

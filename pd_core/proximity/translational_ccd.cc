@@ -25,20 +25,10 @@ void TriangleFirstContact(const ModelPair& pair, int tp, int ts, const Vector3& 
   // near a contact). Degenerate triangles (zero normal) are never skipped;
   // `slack` keeps round-off from skipping a pair the exact tests would keep.
   const double slack = 1e-9 * pair.size();
-  auto apart = [&](const Vector3& n, const Vector3* v, const Vector3& o, double rate) {
-    double lo = 1e300, hi = -1e300;
-    for (int k = 0; k < 3; ++k) {
-      const double h = n.dot(v[k] - o);
-      lo = std::min(lo, h);
-      hi = std::max(hi, h);
-    }
-    const double move = rate * *s_best;
-    return lo + std::min(0.0, move) > slack || hi + std::max(0.0, move) < -slack;
-  };
   const Vector3& n_S = pair.S.face_normals()[ts];
-  if (apart(n_S, p, s[0], n_S.dot(sweep_S))) return;
+  if (TriangleStaysOffPlane(n_S, s[0], p, n_S.dot(sweep_S) * *s_best, slack)) return;
   const Vector3 n_P = pair.X_SP.R_SP * pair.P.face_normals()[tp];
-  if (apart(n_P, s, p[0], -n_P.dot(sweep_S))) return;
+  if (TriangleStaysOffPlane(n_P, p[0], s, -n_P.dot(sweep_S) * *s_best, slack)) return;
   const uint8_t op = pair.P.owned_features()[tp], os = pair.S.owned_features()[ts];
   auto consider = [&](double t) {
     if (t >= 0 && t <= *s_best) {
@@ -108,8 +98,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
         const CandidatePairs::Entry& e = list->entries()[k];
         // Along the entry's separating axis first (a dot product): the
         // swept probe leaf stays at least this far from the scene leaf.
-        if (e.axis_gap + std::min(e.axis_S.dot(shift_from), e.axis_S.dot(shift_to)) - rot > 0.0)
-          continue;
+        if (e.StaysApart(shift_from, shift_to, rot, 0.0)) continue;
         ++tested;
         if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is],
                                     sweep_S, s_best, &lo, &hi) &&

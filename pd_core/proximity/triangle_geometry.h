@@ -8,6 +8,22 @@
 
 namespace pd {
 
+// True if triangle v[0..2] lies wholly on one side of the plane through o
+// with unit normal n, farther than `gap` from it, and stays so while it moves
+// along n by any amount between 0 and `move` (m; 0 for a static test): then
+// no point of it comes within `gap` of anything in that plane. A zero n
+// (degenerate triangle) never decides.
+inline bool TriangleStaysOffPlane(const Vector3& n, const Vector3& o, const Vector3* v,
+                                  double move, double gap) {
+  double lo = 1e300, hi = -1e300;
+  for (int k = 0; k < 3; ++k) {
+    const double h = n.dot(v[k] - o);
+    lo = std::min(lo, h);
+    hi = std::max(hi, h);
+  }
+  return lo + std::min(0.0, move) > gap || hi + std::max(0.0, move) < -gap;
+}
+
 // True if the closed triangles intersect (touching counts), by the separating
 // axis theorem over both normals, the 9 edge-edge cross products and the 6
 // in-plane edge normals (which decide the coplanar case).
