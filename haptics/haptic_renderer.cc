@@ -51,6 +51,7 @@ void HapticRenderer::set_geometry_worker_running(bool running) {
 const ContactSummary& HapticRenderer::ContactAt(const RigidState& tool, int32_t* flags) {
   const int64_t tick = output_.tick;
   const ContactSnapshot* answer = nullptr;
+  bool in_line = false;
   if (async_ && mode_ == GeometryThreadMode::kAuto && fit_answers_ >= static_cast<int64_t>(1.0 / dt_) &&
       worker_.idle() && !geometry_.any_polydepth()) {
     // auto: the worker's answers fit the budget again and it is idle (it
@@ -67,6 +68,7 @@ const ContactSummary& HapticRenderer::ContactAt(const RigidState& tool, int32_t*
   } else {
     geometry_.Query(tool.X_W, tick, &sync_answer_);
     answer = &sync_answer_;
+    in_line = true;
     if (worker_running_ && mode_ == GeometryThreadMode::kAuto && sync_answer_.query_us > sync_budget_us_) {
       // Too slow for the tick: the next queries go to the worker.
       async_ = true;
@@ -77,11 +79,13 @@ const ContactSummary& HapticRenderer::ContactAt(const RigidState& tool, int32_t*
   }
   const ContactSummary& summary = local_.Update(answer, tool, tick, flags);
   model_age_ = local_.model_age(tick);
+  tick_work_ = in_line ? -1 : local_.last_update_terms();
   return summary;
 }
 
 const WrenchOutput& HapticRenderer::Tick(double t, const PoseSample* pose) {
   const auto t_start = std::chrono::steady_clock::now();
+  tick_work_ = 0;
   bool was_engaged = envelope_.engaged();
   int32_t flags = 0;
 

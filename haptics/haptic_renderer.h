@@ -92,6 +92,12 @@ class HapticRenderer {
   // tick; -1: no model yet).
   int64_t model_age_ticks() const { return model_age_; }
   const LocalContactModel& local_contact() const { return local_; }
+  // The last tick's geometry work, counted: the contact model terms it
+  // evaluated when it rendered the geometry thread's answer (0 before the
+  // tool engaged); -1 when it queried the geometry in line (PolyDepth's cost
+  // is not a fixed amount per unit). The servo loop uses it to tell a tick
+  // that overran its work from one charged time by the platform (miss_cause.h).
+  int64_t tick_work() const { return tick_work_; }
   const WrenchOutput& output() const { return output_; }
   RendererCounts counts() const;
 
@@ -110,6 +116,7 @@ class HapticRenderer {
   bool async_ = false;
   int64_t fit_answers_ = 0;   // consecutive worker answers within the budget
   int64_t model_age_ = -1;
+  int64_t tick_work_ = 0;
   int64_t async_ticks_ = 0, switches_ = 0;
   ToolDynamics tool_;
   VirtualCoupling coupling_;

@@ -91,7 +91,7 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 "source_session=%s source_device=%s source_locks=%lld source_changes=%lld "
                 "poses_rejected_other_sender=%lld poses_rejected_not_pinned=%lld "
                 "poses_rejected_no_identity=%lld poses_rejected_version=%lld senders_seen=%lld "
-                "compute_p50_us=%.1f misses_compute=%lld misses_stalled=%lld misses_late_wakeup=%lld "
+                "compute_p50_us=%.1f misses_compute=%lld misses_charged=%lld misses_stalled=%lld misses_late_wakeup=%lld "
                 "late_wakeups=%lld tick_cpu_p99_us=%.1f tick_cpu_max_us=%.1f "
                 "wake_latency_p50_us=%.1f wake_latency_p99_us=%.1f wake_latency_max_us=%.1f "
                 "geometry_thread=%d pd_update_rate_hz=%.1f model_age_p50_ticks=%.0f "
@@ -120,7 +120,8 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 static_cast<long long>(rx.source_rejected.no_identity),
                 static_cast<long long>(rx.wrong_version),
                 static_cast<long long>(rx.source.senders_seen), s.compute_p50_us,
-                static_cast<long long>(s.misses_compute), static_cast<long long>(s.misses_stalled),
+                static_cast<long long>(s.misses_compute), static_cast<long long>(s.misses_charged),
+                static_cast<long long>(s.misses_stalled),
                 static_cast<long long>(s.misses_late_wakeup), static_cast<long long>(s.late_wakeups),
                 s.tick_cpu_p99_us, s.tick_cpu_max_us, s.wake_latency_p50_us, s.wake_latency_p99_us,
                 s.wake_latency_max_us, s.geometry_thread ? 1 : 0, s.pd_update_rate_hz,

@@ -30,6 +30,7 @@ void LocalContactModel::Accept(const ContactSnapshot& answer, int64_t tick) {
   num_candidates_ = answer.num_candidates;
   num_culled_ = answer.num_culled;
   next_active_.clear();
+  terms_ += answer.num_pairs + static_cast<int64_t>(active_.size());
   for (int e = 0; e < answer.num_pairs; ++e) {
     const PairContactModel& m = answer.pairs[e];
     Pair& pair = pairs_[m.object];
@@ -77,12 +78,14 @@ void LocalContactModel::Evaluate(const RigidState& tool, int64_t tick, ContactSu
       ++out->num_held;
     }
     ++out->num_in_contact;
+    terms_ += 1 + pair.model.num_regions;
     EvaluatePairContactModel(pair.model, tool, params_, scale, out);
   }
 }
 
 const ContactSummary& LocalContactModel::Update(const ContactSnapshot* answer, const RigidState& tool,
                                                 int64_t tick, int32_t* flags) {
+  terms_ = static_cast<int64_t>(active_.size());
   if (answer != nullptr) {
     if (options_.blend && model_tick_ >= 0) {
       // What was rendered, at the current state, before the replacement.

@@ -69,6 +69,11 @@ class LocalContactModel {
   // Ticks since the tool pose of the models in use was taken (-1: none yet).
   int64_t model_age(int64_t tick) const { return model_tick_ < 0 ? -1 : tick - model_tick_; }
   const ContactSummary& summary() const { return summary_; }
+  // The last Update's work in model terms (pairs taken from the answer,
+  // pairs and regions evaluated): its cost is a fixed amount per term, so
+  // the servo loop can tell an overrun of this work from time the platform
+  // charged to the thread (miss_cause.h).
+  int64_t last_update_terms() const { return terms_; }
 
  private:
   struct Pair {
@@ -94,6 +99,7 @@ class LocalContactModel {
   Wrench offset_, offset_step_;
   int64_t offset_ticks_left_ = 0;
   LocalContactCounts counts_;
+  int64_t terms_ = 0;
 };
 
 }  // namespace haptics

@@ -294,6 +294,7 @@ haptics_msgs::server_status_t MakeStatusMessage(const LoopStatus& loop, const Re
   m.realtime = loop.realtime ? 1 : 0;
   m.misses_compute = loop.misses_compute;
   m.misses_stalled = loop.misses_stalled;
+  m.misses_charged = loop.misses_charged;
   m.misses_late_wakeup = loop.misses_late_wakeup;
   m.late_wakeups = loop.late_wakeups;
   m.wake_latency_p99_us = loop.wake_latency_us.p99;

@@ -33,7 +33,8 @@ ServoLoop::ServoLoop(HapticRenderer* renderer, LatestValue<PoseSample>* poses, W
     : renderer_(renderer), poses_(poses), sink_(sink), options_(options),
       window_jitter_us_(WindowTicks(options)), window_compute_us_(WindowTicks(options)),
       window_wake_us_(WindowTicks(options)), window_age_(WindowTicks(options)),
-      phase_lock_(PhaseLockFor(options), 1e6 / options.rate_hz) {}
+      phase_lock_(PhaseLockFor(options), 1e6 / options.rate_hz),
+      misses_by_cause_(std::llround(1e9 / options.rate_hz)) {}
 
 ServoLoop::~ServoLoop() {
   Stop();
@@ -202,18 +203,15 @@ void ServoLoop::Run() {
     previous_deadline = next;
     next += period_ns + phase_shift_ns;  // this tick's deadline: the next tick's start
     const bool missed = end > next;
+    switch (misses_by_cause_.Classify({scheduled, wake, end, next, cpu_ns}, renderer_->tick_work())) {
+      case MissCause::kNone: break;
+      case MissCause::kLateWakeup: ++misses_late_; break;
+      case MissCause::kStalled: ++misses_stalled_; break;
+      case MissCause::kCharged: ++misses_charged_; break;
+      case MissCause::kCompute: ++misses_compute_; break;
+    }
     if (missed) {
       ++misses_;
-      // Would it have missed had it woken on time? Then the tick is to
-      // blame: its CPU time if that alone overran, else the time it was not
-      // running inside the tick (a stall). Otherwise the late wake-up is.
-      if (scheduled + (end - wake) <= next) {
-        ++misses_late_;
-      } else if (scheduled + cpu_ns > next) {
-        ++misses_compute_;
-      } else {
-        ++misses_stalled_;
-      }
       // More than a whole period late: skip the lost slots, do not burst.
       if (end > next + period_ns) next += ((end - next) / period_ns) * period_ns;
     }
@@ -241,6 +239,7 @@ void ServoLoop::PublishStatus(int64_t now_ns, int64_t window_ticks, int64_t wind
   s.deadline_misses = misses_;
   s.misses_compute = misses_compute_;
   s.misses_stalled = misses_stalled_;
+  s.misses_charged = misses_charged_;
   s.misses_late_wakeup = misses_late_;
   s.late_wakeups = late_wakeups_;
   s.wake_latency_us = window_wake_us_.Summarize();
@@ -267,6 +266,7 @@ LoopSummary ServoLoop::Summary() const {
   s.deadline_misses = misses_;
   s.misses_compute = misses_compute_;
   s.misses_stalled = misses_stalled_;
+  s.misses_charged = misses_charged_;
   s.misses_late_wakeup = misses_late_;
   s.late_wakeups = late_wakeups_;
   s.wake_latency_p50_us = wake_hist_.Percentile(0.50);

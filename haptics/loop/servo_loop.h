@@ -23,6 +23,7 @@
 #include "haptics/contact/geometry_thread.h"
 #include "haptics/haptic_renderer.h"
 #include "haptics/loop/latest_value.h"
+#include "haptics/loop/miss_cause.h"
 #include "haptics/loop/phase_lock.h"
 #include "haptics/io/pose_sample.h"
 #include "haptics/loop/timing_stats.h"
@@ -81,13 +82,17 @@ struct LoopStatus {
   TimingSummary jitter_us;        // this window
   TimingSummary compute_us;       // this window
   int64_t deadline_misses = 0;    // total
-  // Of those, by cause (each miss has one):
-  //  compute: the tick's own CPU time overran its period (ours to fix);
+  // Of those, by cause (each miss has one; miss_cause.h):
+  //  compute: the tick's own CPU time overran its period and no tick of as
+  //    much counted work ran in half a period (ours to fix);
+  //  charged: its CPU time overran, but ticks of as much work ran in half a
+  //    period: time the platform charged to the thread (interrupts, VM exits);
   //  stalled: its CPU time fit, but the thread was not running for long
   //    enough inside the tick to miss (preempted by another thread or an
   //    interrupt, or its vCPU descheduled by the hypervisor: the platform's);
   //  late wake-up: it woke up so late that its tick did not fit (the platform's).
   int64_t misses_compute = 0;     // total
+  int64_t misses_charged = 0;     // total
   int64_t misses_stalled = 0;     // total
   int64_t misses_late_wakeup = 0; // total
   int64_t late_wakeups = 0;       // total wake-ups >= late_wakeup_us late
@@ -105,7 +110,7 @@ struct LoopSummary {
   double elapsed_s = 0.0;
   double achieved_rate_hz = 0.0;
   int64_t deadline_misses = 0;
-  int64_t misses_compute = 0, misses_stalled = 0, misses_late_wakeup = 0;  // see LoopStatus
+  int64_t misses_compute = 0, misses_charged = 0, misses_stalled = 0, misses_late_wakeup = 0;  // see LoopStatus
   int64_t late_wakeups = 0;
   double wake_latency_p50_us = 0.0, wake_latency_p99_us = 0.0, wake_latency_max_us = 0.0;
   double model_age_p50_ticks = 0.0, model_age_p99_ticks = 0.0, model_age_max_ticks = 0.0;
@@ -168,10 +173,11 @@ class ServoLoop {
   SampleWindow window_jitter_us_, window_compute_us_, window_wake_us_, window_age_;
   DurationHistogram jitter_hist_, compute_hist_, cpu_hist_, pose_wait_hist_, wake_hist_, age_hist_;
   std::unique_ptr<GeometryThread> geometry_thread_;
-  int64_t misses_compute_ = 0, misses_stalled_ = 0, misses_late_ = 0, late_wakeups_ = 0;
+  int64_t misses_compute_ = 0, misses_charged_ = 0, misses_stalled_ = 0, misses_late_ = 0, late_wakeups_ = 0;
   int64_t window_updates_start_ = 0;
   int64_t ticks_by_pose_ = 0, ticks_by_deadline_ = 0;
   PhaseLock phase_lock_;
+  MissClassifier misses_by_cause_;
   int64_t ticks_ = 0;
   int64_t misses_ = 0;
   int64_t start_ns_ = 0, end_ns_ = 0;

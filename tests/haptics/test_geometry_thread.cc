@@ -67,6 +67,48 @@ TEST(GeometryWorker, AnswersTheNewestPoseOnly) {
   EXPECT_EQ(worker.queries(), 1);
 }
 
+// The tick's counted work (HapticRenderer::tick_work), which tells an
+// overrun of the tick's own work from time the platform charged to the
+// thread (miss_cause.h): the contact model terms when the tick renders the
+// worker's answer, more in contact than free; -1 (not counted) in line.
+TEST(GeometryWorker, TicksRenderingTheWorkersAnswerCountTheirModelTerms) {
+  const SceneConfig config = ThreadedBoxOnBox();
+  const SceneModels models = BuildSceneModels(config);
+  HapticRenderer renderer(config, models);
+  renderer.set_geometry_worker_running(true);
+  ASSERT_TRUE(renderer.geometry_async());
+  double t = 0.0;
+  int64_t seq = 0;
+  renderer.Tick(t, nullptr);
+  EXPECT_EQ(renderer.tick_work(), 0);  // not engaged: nothing evaluated
+  // 100 rounds (the coupled tool follows the device), each a tick that posts
+  // the pose and one that takes the worker's answer.
+  auto settle_at = [&](double z) {
+    for (int i = 0; i < 100; ++i) {
+      const PoseSample pose = test::MakePose(++seq, Vector3(0, 0, z));
+      renderer.Tick(t += renderer.dt(), &pose);
+      renderer.geometry_worker().RunOnce();
+      renderer.Tick(t += renderer.dt(), &pose);
+    }
+    return renderer.tick_work();
+  };
+  const int64_t contact_work = settle_at(0.007);  // 3 mm into the table
+  ASSERT_GT(renderer.contact().num_in_contact, 0);
+  const int64_t free_work = settle_at(0.03);      // 2 cm above it
+  ASSERT_EQ(renderer.contact().num_in_contact, 0);
+  EXPECT_GE(free_work, 0);
+  EXPECT_GE(contact_work, 2);  // the pair taken and evaluated, and its regions
+  EXPECT_GT(contact_work, free_work);
+  renderer.set_geometry_worker_running(false);
+
+  SceneConfig sync_config = config;
+  sync_config.contact.geometry_thread = GeometryThreadMode::kOff;
+  HapticRenderer sync(sync_config, models);
+  const PoseSample pose = test::MakePose(1, Vector3(0, 0, 0.007));
+  sync.Tick(0.0, &pose);
+  EXPECT_EQ(sync.tick_work(), -1);
+}
+
 // Neither hot loop allocates once warm: the servo tick with the geometry on
 // the worker (post, take the answer, evaluate the model) and the worker's
 // query (driven here on the same thread, every third tick, so both count).

@@ -152,6 +152,7 @@ TEST(StatusMessage, CarriesLoopAndReceiverCounters) {
   loop.deadline_misses = 9;
   loop.misses_compute = 2;
   loop.misses_stalled = 3;
+  loop.misses_charged = 4;
   loop.misses_late_wakeup = 4;
   loop.realtime = true;
   loop.renderer.poses_rejected.bad_quaternion = 3;
@@ -166,6 +167,7 @@ TEST(StatusMessage, CarriesLoopAndReceiverCounters) {
   EXPECT_EQ(m.deadline_misses, 9);
   EXPECT_EQ(m.misses_compute, 2);
   EXPECT_EQ(m.misses_stalled, 3);
+  EXPECT_EQ(m.misses_charged, 4);
   EXPECT_EQ(m.misses_late_wakeup, 4);
   EXPECT_EQ(m.poses_received, 990);
   EXPECT_EQ(m.messages_malformed, 4);
