@@ -23,11 +23,12 @@
 #
 # Verdict PASS (exit 0) needs all of: the server kept running and stopped
 # cleanly; every pose sent; RSS growth after warm-up <= 1 MiB; zero
-# compute-caused misses (ticks that finished after the next tick's start and
-# whose own compute took longer than the period); zero poses lost; zero
-# non-finite wrenches. Otherwise FAIL (exit 1) naming each failed measure.
-# Misses of ticks that woke up late (the VM did not run the SCHED_FIFO
-# thread in time, with compute within the period) and superseded poses are
+# compute-caused misses (the server's misses_compute: ticks that finished
+# after the next tick's start because their own CPU time overran the period
+# beyond what their work needs, haptics/loop/miss_cause.h); zero poses lost;
+# zero non-finite wrenches. Otherwise FAIL (exit 1) naming each failed
+# measure. The platform's misses (late wake-ups: the VM did not run the
+# SCHED_FIFO thread in time; stalled; charged) and superseded poses are
 # reported, not judged: the machine's load decides them.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
@@ -146,16 +147,20 @@ read -r rss_start rss_warm rss_end rss_max < <(awk -F, -v d="$duration" '
 growth_kb=$((rss_end - rss_warm))
 sent=$(json poses_sent) lost=$(json lost) superseded=$(json superseded) nonfinite=$(json non_finite_answers)
 ticks=$(field ticks) misses=$(field deadline_misses)
-# Split the misses: compute longer than the period (ours) or a late wake-up.
-read -r log_rows not_logged compute_misses late_wake_misses over_period < <(awk -F, '
+# The misses by cause, as the server classified them (haptics/loop/miss_cause.h):
+# compute is ours; charged, stalled and late wake-ups are the platform's.
+compute_misses=$(field misses_compute) charged_misses=$(field misses_charged)
+stalled_misses=$(field misses_stalled) late_wake_misses=$(field misses_late_wakeup)
+# The per-tick log: every tick logged, and how many took longer than the period.
+read -r log_rows not_logged over_period < <(awk -F, '
   /^#/ { m = split($0, words, " ")
          for (i = 1; i <= m; i++) { split(words[i], kv, "="); if (kv[1] == "nominal_period_us") p = kv[2]
                                     if (kv[1] == "ticks_not_logged") nl = kv[2] }
          next }
   $1 == "tick" { next }
-  { n++; over = ($3 + 0 > p + 0); o += over; if ($6 == 1) { if (over) c++; else w++ } }
-  END { if (p == "" || nl == "") { print "0 - - - -"; exit } printf "%d %d %d %d %d\n", n, nl, c, w, o }' \
-  "$work/ticks.csv" 2>/dev/null || echo "0 - - - -")
+  { n++; o += ($3 + 0 > p + 0) }
+  END { if (p == "" || nl == "") { print "0 - -"; exit } printf "%d %d %d\n", n, nl, o }' \
+  "$work/ticks.csv" 2>/dev/null || echo "0 - -")
 growth_ok=$(awk -v g="$growth_kb" -v m="$max_growth_kb" 'BEGIN { print (g <= m) ? 1 : 0 }')
 verdict=PASS problems=()
 ((server_alive)) || problems+=("the server died during the run")
@@ -169,10 +174,15 @@ verdict=PASS problems=()
 [[ -z "$nonfinite" || "$nonfinite" -eq 0 ]] || problems+=("$nonfinite non-finite wrenches")
 ((samples >= 2)) || problems+=("fewer than 2 memory samples")
 ((growth_ok)) || problems+=("RSS grew ${growth_kb} kB after warm-up (limit ${max_growth_kb} kB)")
-if [[ "$compute_misses" == - ]]; then
+if [[ "$not_logged" == - ]]; then
   problems+=("no tick timing log ($work/ticks.csv)")
 else
   ((not_logged == 0)) || problems+=("$not_logged ticks not in the timing log")
+fi
+if [[ -z "$compute_misses" ]]; then
+  problems+=("no misses_compute in the server summary")
+  compute_misses=-
+else
   ((compute_misses <= max_compute_misses)) ||
     problems+=("$compute_misses compute-caused misses (limit $max_compute_misses)")
 fi
@@ -193,15 +203,19 @@ fi
   echo "| RSS growth after warm-up (judged: <= $max_growth_kb kB) | $growth_kb kB ($(awk -v g="$growth_kb" -v d="$duration" 'BEGIN { printf "%.2f", g / (d / 3600) }') kB/h) |"
   echo "| ticks / deadline misses | $ticks / $misses ($(awk -v m="${misses:-0}" -v d="$duration" 'BEGIN { printf "%.1f", m / (d / 60) }') per min) |"
   echo "| compute-caused misses (judged: <= $max_compute_misses) | $compute_misses |"
-  echo "| late wake-up misses (not judged) | $late_wake_misses ($(awk -v m="$late_wake_misses" -v d="$duration" 'BEGIN { printf "%.1f", (m + 0) / (d / 60) }') per min) |"
+  echo "| late wake-up misses (not judged) | ${late_wake_misses:--} ($(awk -v m="$late_wake_misses" -v d="$duration" 'BEGIN { printf "%.1f", (m + 0) / (d / 60) }') per min) |"
+  echo "| charged / stalled misses (the platform's, not judged) | ${charged_misses:--} / ${stalled_misses:--} |"
   echo "| machine floor: cyclictest before the run (not judged) | $floor_text |"
   echo "| ticks with compute > period (missed or not) | $over_period of $log_rows logged |"
   echo "| poses sent / lost (judged: 0) / superseded | ${sent:-?} / ${lost:-?} / ${superseded:-?} |"
   echo "| non-finite wrenches (judged: 0) | ${nonfinite:-?} |"
   echo
-  echo "A miss is a tick that finished after the next tick's start. Compute-caused: its own compute"
-  echo "(wake-up to wrench handed over, wall clock) exceeded the ${rate_hz} Hz period. Late wake-up:"
-  echo "compute within the period, but the thread woke late (the VM did not run it in time)."
+  echo "A miss is a tick that finished after the next tick's start, split by cause as the server counts"
+  echo "them (haptics/loop/miss_cause.h). Compute-caused: the tick's own CPU time overran the ${rate_hz} Hz"
+  echo "period and no tick of as much counted work ran in half a period (ours). Charged: its CPU time"
+  echo "overran, but the same work ran in half a period elsewhere (time the platform charged to the"
+  echo "thread). Stalled: its CPU time fit but the thread was not running. Late wake-up: the thread woke"
+  echo "too late to finish (the VM did not run it in time)."
   echo
   echo "Server exit summary:"
   echo
