@@ -40,6 +40,15 @@ SceneConfig ThreadedBoxOnBox() {
   return c;
 }
 
+// A box-on-box renderer whose ticks render the worker's answers; the test
+// drives the worker (RunOnce) on its own thread.
+struct AsyncBoxOnBox {
+  SceneConfig config = ThreadedBoxOnBox();
+  SceneModels models = BuildSceneModels(config);
+  HapticRenderer renderer{config, models};
+  AsyncBoxOnBox() { renderer.set_geometry_worker_running(true); }
+};
+
 TEST(GeometryWorker, AnswersTheNewestPoseOnly) {
   const SceneConfig config = ThreadedBoxOnBox();
   const SceneModels models = BuildSceneModels(config);
@@ -72,10 +81,8 @@ TEST(GeometryWorker, AnswersTheNewestPoseOnly) {
 // thread (miss_cause.h): the contact model terms when the tick renders the
 // worker's answer, more in contact than free; -1 (not counted) in line.
 TEST(GeometryWorker, TicksRenderingTheWorkersAnswerCountTheirModelTerms) {
-  const SceneConfig config = ThreadedBoxOnBox();
-  const SceneModels models = BuildSceneModels(config);
-  HapticRenderer renderer(config, models);
-  renderer.set_geometry_worker_running(true);
+  AsyncBoxOnBox box;
+  HapticRenderer& renderer = box.renderer;
   ASSERT_TRUE(renderer.geometry_async());
   double t = 0.0;
   int64_t seq = 0;
@@ -101,9 +108,9 @@ TEST(GeometryWorker, TicksRenderingTheWorkersAnswerCountTheirModelTerms) {
   EXPECT_GT(contact_work, free_work);
   renderer.set_geometry_worker_running(false);
 
-  SceneConfig sync_config = config;
+  SceneConfig sync_config = box.config;
   sync_config.contact.geometry_thread = GeometryThreadMode::kOff;
-  HapticRenderer sync(sync_config, models);
+  HapticRenderer sync(sync_config, box.models);
   const PoseSample pose = test::MakePose(1, Vector3(0, 0, 0.007));
   sync.Tick(0.0, &pose);
   EXPECT_EQ(sync.tick_work(), -1);
@@ -113,10 +120,8 @@ TEST(GeometryWorker, TicksRenderingTheWorkersAnswerCountTheirModelTerms) {
 // the worker (post, take the answer, evaluate the model) and the worker's
 // query (driven here on the same thread, every third tick, so both count).
 TEST(GeometryWorker, NeitherLoopAllocatesAfterWarmUp) {
-  const SceneConfig config = ThreadedBoxOnBox();
-  const SceneModels models = BuildSceneModels(config);
-  HapticRenderer renderer(config, models);
-  renderer.set_geometry_worker_running(true);
+  AsyncBoxOnBox box;
+  HapticRenderer& renderer = box.renderer;
   ASSERT_TRUE(renderer.geometry_async());
   double t = 0.0;
   int64_t seq = 0;
