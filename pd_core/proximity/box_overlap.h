@@ -101,6 +101,52 @@ inline double BoxGapLowerBound(const ProbeBoxInS& a, const BvhNode& b,
   return gap;
 }
 
+// The largest gap between the boxes along one axis (m) of the 15 separating
+// axes and the centres' direction, and that axis (unit, in S, pointing from
+// box b to box a) in *axis_S. A fixed axis's gap is a lower bound on the
+// contents' distance that a later motion changes by its component along the
+// axis. Computed in b's frame like BoxGapLowerBound (no early stop).
+inline double SeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S) {
+  const internal::BoxPair p(a, b);
+  double gap = -1e300;
+  Vector3 axis_B = Vector3::UnitX();
+  for (int i = 0; i < 3; ++i) {
+    const double g = std::abs(p.t[i]) - p.hb[i] - p.absR.row(i).dot(p.ha);
+    if (g > gap) gap = g, axis_B = (p.t[i] >= 0.0 ? 1.0 : -1.0) * Vector3::Unit(i);
+  }
+  for (int j = 0; j < 3; ++j) {
+    const double along = p.t.dot(p.R.col(j));
+    const double g = std::abs(along) - p.absR.col(j).dot(p.hb) - p.ha[j];
+    if (g > gap) gap = g, axis_B = (along >= 0.0 ? 1.0 : -1.0) * p.R.col(j);
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double len2 = std::max(0.0, 1.0 - p.R(i, j) * p.R(i, j));
+      if (len2 < 1e-12) continue;  // parallel axes: the face axes decide
+      // L = e_i x R_j, of length sqrt(len2).
+      const double proj = p.t[i2] * p.R(i1, j) - p.t[i1] * p.R(i2, j);
+      const double r = p.hb[i1] * p.absR(i2, j) + p.hb[i2] * p.absR(i1, j) +
+                       p.ha[j1] * p.absR(i, j2) + p.ha[j2] * p.absR(i, j1);
+      const double d = std::abs(proj) - r;
+      if (d <= 0.0 ? d <= gap : (gap > 0.0 && d * d <= gap * gap * len2)) continue;
+      const double inv_len = 1.0 / std::sqrt(len2);
+      gap = d * inv_len;
+      const Vector3 L = Vector3::Unit(i).cross(p.R.col(j)) * inv_len;
+      axis_B = proj >= 0.0 ? L : Vector3(-L);
+    }
+  }
+  const double t_norm = p.t.norm();
+  if (t_norm > 0.0) {
+    const Vector3 c = p.t / t_norm;
+    const double g = t_norm - c.cwiseAbs().dot(p.hb) - (p.R.transpose() * c).cwiseAbs().dot(p.ha);
+    if (g > gap) gap = g, axis_B = c;
+  }
+  *axis_S = b.R_MB * axis_B;
+  return gap;
+}
+
 // A lower bound on the boxes' distance (m): the larger of the bounding
 // spheres' gap and the separating-axis bound; exact only when > `enough`
 // is not needed (the axes stop once the bound exceeds it).

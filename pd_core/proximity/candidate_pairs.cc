@@ -9,40 +9,6 @@
 
 namespace pd {
 
-namespace {
-
-// The largest gap between the boxes along one of the candidate axes (the
-// 15 separating axes of two boxes and the centres' direction), with that
-// axis signed to point from box b to box a. The gap along a fixed axis is a
-// lower bound on the contents' distance that a later motion changes by its
-// component along the axis (plus the rotation's share).
-double BestSeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S) {
-  const Vector3 c = a.p_SA - b.center_M;
-  double best = -std::numeric_limits<double>::infinity();
-  auto try_axis = [&](const Vector3& u) {
-    const double along = c.dot(u);
-    const double reach = (a.R_SA.transpose() * u).cwiseAbs().dot(*a.half_A) +
-                         (b.R_MB.transpose() * u).cwiseAbs().dot(b.half_B);
-    const double gap = std::abs(along) - reach;
-    if (gap > best) {
-      best = gap;
-      *axis_S = along >= 0.0 ? u : Vector3(-u);
-    }
-  };
-  for (int i = 0; i < 3; ++i) try_axis(b.R_MB.col(i));
-  for (int j = 0; j < 3; ++j) try_axis(a.R_SA.col(j));
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      const Vector3 u = b.R_MB.col(i).cross(a.R_SA.col(j));
-      if (u.squaredNorm() > 1e-12) try_axis(u.normalized());
-    }
-  }
-  if (c.norm() > 0.0) try_axis(c.normalized());
-  return best;
-}
-
-}  // namespace
-
 void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, double radius) {
   entries_.clear();
   X_SP_ = pair.X_SP;
@@ -68,8 +34,7 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
   const auto& nodes_P = pair.P.bvh().nodes();
   const auto& nodes_S = pair.S.bvh().nodes();
   for (Entry& e : entries_) {
-    e.axis_gap = BestSeparatingAxisGap(ProbeBox(nodes_P[e.ip], pair.X_SP, q_center_S),
-                                       nodes_S[e.is], &e.axis_S);
+    e.axis_gap = SeparatingAxisGap(probe_box(nodes_P[e.ip]), nodes_S[e.is], &e.axis_S);
   }
   if (pair.counters) pair.counters->box_tests += static_cast<int64_t>(entries_.size());
   std::sort(entries_.begin(), entries_.end(),
