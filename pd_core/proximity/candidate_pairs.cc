@@ -18,25 +18,30 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
   scene_ = &pair.S;
   valid_ = true;
   ProbeBoxMemo probe_box(pair.X_SP, q_center_S);
+  const auto& nodes_P = pair.P.bvh().nodes();
+  const auto& nodes_S = pair.S.bvh().nodes();
+  int64_t leaf_tests = 0;
+  // The descent prunes on the bounding spheres and the six face axes only:
+  // kept pairs (most of those tested) would pay for all nine edge axes too.
+  // A leaf pair gets every axis once, with its separating direction.
   DescendBvhPair(
       pair.P.bvh(), pair.S.bvh(),
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        *key = BoxGap(probe_box(a), b, radius);
+        *key = BoxFaceGapLowerBound(probe_box(a), b, radius);  // nearer first
         return *key <= radius;
       },
       [](double) { return true; },
-      [&](int ip, int is, double gap) {
-        entries_.push_back({ip, is, gap, Vector3::Zero(), 0.0});  // the node test's full bound
+      [&](int ip, int is) {
+        ++leaf_tests;
+        const ProbeBoxInS& a = probe_box(nodes_P[ip]);
+        Vector3 axis_S;
+        const double axis_gap = SeparatingAxisGap(a, nodes_S[is], &axis_S);
+        const double gap = std::max(axis_gap, SphereGap(a, nodes_S[is]));
+        if (gap <= radius) entries_.push_back({ip, is, gap, axis_S, axis_gap});
         return true;
       },
       pair.counters);
-  // Each entry's separating direction: one more box computation per entry.
-  const auto& nodes_P = pair.P.bvh().nodes();
-  const auto& nodes_S = pair.S.bvh().nodes();
-  for (Entry& e : entries_) {
-    e.axis_gap = SeparatingAxisGap(probe_box(nodes_P[e.ip]), nodes_S[e.is], &e.axis_S);
-  }
-  if (pair.counters) pair.counters->box_tests += static_cast<int64_t>(entries_.size());
+  if (pair.counters) pair.counters->box_tests += leaf_tests;
   std::sort(entries_.begin(), entries_.end(),
             [](const Entry& x, const Entry& y) { return x.gap < y.gap; });
 }
