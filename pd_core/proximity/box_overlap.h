@@ -5,6 +5,7 @@
 // p_BA there. 15 axes: B's faces, A's faces and the 9 edge-edge products.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "pd_core/proximity/bvh.h"
 #include "pd_core/geometry/relative_pose.h"
@@ -105,8 +106,11 @@ inline double BoxGapLowerBound(const ProbeBoxInS& a, const BvhNode& b,
 // axes and the centres' direction, and that axis (unit, in S, pointing from
 // box b to box a) in *axis_S. A fixed axis's gap is a lower bound on the
 // contents' distance that a later motion changes by its component along the
-// axis. Computed in b's frame like BoxGapLowerBound (no early stop).
-inline double SeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S) {
+// axis. Computed in b's frame like BoxGapLowerBound; once the gap exceeds
+// `enough` it is returned at once (without the axis: a caller that drops
+// such pairs needs neither).
+inline double SeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S,
+                                double enough = std::numeric_limits<double>::infinity()) {
   const internal::BoxPair p(a, b);
   double gap = -1e300;
   Vector3 axis_B = Vector3::UnitX();
@@ -114,11 +118,13 @@ inline double SeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3*
     const double g = std::abs(p.t[i]) - p.hb[i] - p.absR.row(i).dot(p.ha);
     if (g > gap) gap = g, axis_B = (p.t[i] >= 0.0 ? 1.0 : -1.0) * Vector3::Unit(i);
   }
+  if (gap > enough) return gap;
   for (int j = 0; j < 3; ++j) {
     const double along = p.t.dot(p.R.col(j));
     const double g = std::abs(along) - p.absR.col(j).dot(p.hb) - p.ha[j];
     if (g > gap) gap = g, axis_B = (along >= 0.0 ? 1.0 : -1.0) * p.R.col(j);
   }
+  if (gap > enough) return gap;
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
@@ -135,6 +141,7 @@ inline double SeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3*
       gap = d * inv_len;
       const Vector3 L = Vector3::Unit(i).cross(p.R.col(j)) * inv_len;
       axis_B = proj >= 0.0 ? L : Vector3(-L);
+      if (gap > enough) return gap;
     }
   }
   const double t_norm = p.t.norm();

@@ -35,7 +35,7 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
         ++leaf_tests;
         const ProbeBoxInS& a = probe_box(nodes_P[ip]);
         Vector3 axis_S;
-        const double axis_gap = SeparatingAxisGap(a, nodes_S[is], &axis_S);
+        const double axis_gap = SeparatingAxisGap(a, nodes_S[is], &axis_S, radius);
         const double gap = std::max(axis_gap, SphereGap(a, nodes_S[is]));
         if (gap <= radius) entries_.push_back({ip, is, gap, axis_S, axis_gap});
         return true;
