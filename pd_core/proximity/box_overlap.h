@@ -66,92 +66,86 @@ struct BoxPair {
 
 }  // namespace internal
 
-// Lower bound on the distance between the two boxes (<= 0: may overlap).
-// Each axis gives |projected centre gap| - radii, divided by the axis length.
-// Stops as soon as the bound exceeds `enough` (callers that only compare
-// against a threshold pass it: the rest of the axes cannot change the answer).
-inline double BoxGapLowerBound(const ProbeBoxInS& a, const BvhNode& b,
-                               double enough = 0.0) {
-  const internal::BoxPair p(a, b);
-  double gap = -1e300;
-  for (int i = 0; i < 3; ++i) {
-    gap = std::max(gap, std::abs(p.t[i]) - p.hb[i] - p.absR.row(i).dot(p.ha));
-  }
-  if (gap > enough) return gap;
-  for (int j = 0; j < 3; ++j) {
-    gap = std::max(gap, std::abs(p.t.dot(p.R.col(j))) - p.absR.col(j).dot(p.hb) - p.ha[j]);
-  }
-  if (gap > enough) return gap;
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double len2 = std::max(0.0, 1.0 - p.R(i, j) * p.R(i, j));
-      if (len2 < 1e-12) continue;  // parallel axes: the face axes decide
-      const double proj = std::abs(p.t[i2] * p.R(i1, j) - p.t[i1] * p.R(i2, j));
-      const double r = p.hb[i1] * p.absR(i2, j) + p.hb[i2] * p.absR(i1, j) +
-                       p.ha[j1] * p.absR(i, j2) + p.ha[j2] * p.absR(i, j1);
-      // The axis gives (proj - r) / len with len = sqrt(len2) <= 1: skip the
-      // root where that cannot beat the bound so far (the common case).
-      const double d = proj - r;
-      if (d <= 0.0 ? d <= gap : (gap > 0.0 && d * d <= gap * gap * len2)) continue;
-      gap = std::max(gap, d / std::sqrt(len2));
-      if (gap > enough) return gap;
-    }
-  }
-  return gap;
-}
+// Which axes AxisGap looks at.
+enum class BoxAxes {
+  kFaces,         // the 6 face axes
+  kFacesEdges,    // and the 9 edge-edge axes (the 15 separating axes)
+  kFacesEdgesCentres,  // and the centres' direction
+};
 
-// The largest gap between the boxes along one axis (m) of the 15 separating
-// axes and the centres' direction, and that axis (unit, in S, pointing from
-// box b to box a) in *axis_S. A fixed axis's gap is a lower bound on the
-// contents' distance that a later motion changes by its component along the
-// axis. Computed in b's frame like BoxGapLowerBound; once the gap exceeds
-// `enough` it is returned at once (without the axis: a caller that drops
-// such pairs needs neither).
-inline double SeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S,
-                                double enough = std::numeric_limits<double>::infinity()) {
+// The one separating-axis routine: the largest gap between the boxes (m)
+// along the chosen axes, a lower bound on their distance (<= 0: may
+// overlap). Each axis gives |projected centre gap| - radii, divided by the
+// axis length. Stops as soon as the bound exceeds `enough` (callers that
+// only compare against a threshold pass it: the rest of the axes cannot
+// change the answer). With kTrackAxis, *axis_S gets the axis of the largest
+// gap (unit, in S, from box b to box a) unless it stopped early.
+template <BoxAxes kAxes, bool kTrackAxis = false>
+inline double AxisGap(const ProbeBoxInS& a, const BvhNode& b, double enough,
+                      Vector3* axis_S = nullptr) {
   const internal::BoxPair p(a, b);
   double gap = -1e300;
   Vector3 axis_B = Vector3::UnitX();
-  for (int i = 0; i < 3; ++i) {
-    const double g = std::abs(p.t[i]) - p.hb[i] - p.absR.row(i).dot(p.ha);
-    if (g > gap) gap = g, axis_B = (p.t[i] >= 0.0 ? 1.0 : -1.0) * Vector3::Unit(i);
-  }
+  auto offer = [&](double g, const Vector3& axis, double along) {
+    if (g > gap) {
+      gap = g;
+      if constexpr (kTrackAxis) axis_B = along >= 0.0 ? axis : Vector3(-axis);
+    }
+  };
+  for (int i = 0; i < 3; ++i)
+    offer(std::abs(p.t[i]) - p.hb[i] - p.absR.row(i).dot(p.ha), Vector3::Unit(i), p.t[i]);
   if (gap > enough) return gap;
   for (int j = 0; j < 3; ++j) {
     const double along = p.t.dot(p.R.col(j));
-    const double g = std::abs(along) - p.absR.col(j).dot(p.hb) - p.ha[j];
-    if (g > gap) gap = g, axis_B = (along >= 0.0 ? 1.0 : -1.0) * p.R.col(j);
+    offer(std::abs(along) - p.absR.col(j).dot(p.hb) - p.ha[j], p.R.col(j), along);
   }
   if (gap > enough) return gap;
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double len2 = std::max(0.0, 1.0 - p.R(i, j) * p.R(i, j));
-      if (len2 < 1e-12) continue;  // parallel axes: the face axes decide
-      // L = e_i x R_j, of length sqrt(len2).
-      const double proj = p.t[i2] * p.R(i1, j) - p.t[i1] * p.R(i2, j);
-      const double r = p.hb[i1] * p.absR(i2, j) + p.hb[i2] * p.absR(i1, j) +
-                       p.ha[j1] * p.absR(i, j2) + p.ha[j2] * p.absR(i, j1);
-      const double d = std::abs(proj) - r;
-      if (d <= 0.0 ? d <= gap : (gap > 0.0 && d * d <= gap * gap * len2)) continue;
-      const double inv_len = 1.0 / std::sqrt(len2);
-      gap = d * inv_len;
-      const Vector3 L = Vector3::Unit(i).cross(p.R.col(j)) * inv_len;
-      axis_B = proj >= 0.0 ? L : Vector3(-L);
-      if (gap > enough) return gap;
+  if constexpr (kAxes != BoxAxes::kFaces) {
+    for (int i = 0; i < 3; ++i) {
+      const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+      for (int j = 0; j < 3; ++j) {
+        const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+        const double len2 = std::max(0.0, 1.0 - p.R(i, j) * p.R(i, j));
+        if (len2 < 1e-12) continue;  // parallel axes: the face axes decide
+        // L = e_i x R_j, of length sqrt(len2).
+        const double proj = p.t[i2] * p.R(i1, j) - p.t[i1] * p.R(i2, j);
+        const double r = p.hb[i1] * p.absR(i2, j) + p.hb[i2] * p.absR(i1, j) +
+                         p.ha[j1] * p.absR(i, j2) + p.ha[j2] * p.absR(i, j1);
+        // The axis gives (|proj| - r) / len with len <= 1: skip the root
+        // where that cannot beat the bound so far (the common case).
+        const double d = std::abs(proj) - r;
+        if (d <= 0.0 ? d <= gap : (gap > 0.0 && d * d <= gap * gap * len2)) continue;
+        const double len = std::sqrt(len2);
+        offer(d / len, Vector3::Unit(i).cross(p.R.col(j)) / len, proj);
+        if (gap > enough) return gap;
+      }
     }
   }
-  const double t_norm = p.t.norm();
-  if (t_norm > 0.0) {
-    const Vector3 c = p.t / t_norm;
-    const double g = t_norm - c.cwiseAbs().dot(p.hb) - (p.R.transpose() * c).cwiseAbs().dot(p.ha);
-    if (g > gap) gap = g, axis_B = c;
+  if constexpr (kAxes == BoxAxes::kFacesEdgesCentres) {
+    const double t_norm = p.t.norm();
+    if (t_norm > 0.0) {
+      const Vector3 c = p.t / t_norm;
+      offer(t_norm - c.cwiseAbs().dot(p.hb) - (p.R.transpose() * c).cwiseAbs().dot(p.ha), c,
+            1.0);
+    }
   }
-  *axis_S = b.R_MB * axis_B;
+  if constexpr (kTrackAxis) *axis_S = b.R_MB * axis_B;
   return gap;
+}
+
+// The 15 separating axes.
+inline double BoxGapLowerBound(const ProbeBoxInS& a, const BvhNode& b, double enough = 0.0) {
+  return AxisGap<BoxAxes::kFacesEdges>(a, b, enough);
+}
+
+// The 15 separating axes and the centres' direction, and the axis of the
+// largest gap in *axis_S (unit, in S, from box b to box a): a fixed axis's
+// gap is a lower bound on the contents' distance that a later motion
+// changes by its component along the axis. Past `enough` it returns at once
+// without the axis (a caller that drops such pairs needs neither).
+inline double SeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3* axis_S,
+                                double enough = std::numeric_limits<double>::infinity()) {
+  return AxisGap<BoxAxes::kFacesEdgesCentres, true>(a, b, enough, axis_S);
 }
 
 // The bounding spheres' gap (m; a lower bound on the boxes' distance).
@@ -165,14 +159,7 @@ inline double SphereGap(const ProbeBoxInS& a, const BvhNode& b) {
 inline double BoxFaceGapLowerBound(const ProbeBoxInS& a, const BvhNode& b, double enough) {
   const double sphere_gap = SphereGap(a, b);
   if (sphere_gap > enough) return sphere_gap;
-  const internal::BoxPair p(a, b);
-  double gap = sphere_gap;
-  for (int i = 0; i < 3; ++i)
-    gap = std::max(gap, std::abs(p.t[i]) - p.hb[i] - p.absR.row(i).dot(p.ha));
-  if (gap > enough) return gap;
-  for (int j = 0; j < 3; ++j)
-    gap = std::max(gap, std::abs(p.t.dot(p.R.col(j))) - p.absR.col(j).dot(p.hb) - p.ha[j]);
-  return gap;
+  return std::max(sphere_gap, AxisGap<BoxAxes::kFaces>(a, b, enough));
 }
 
 // A lower bound on the boxes' distance (m): the larger of the bounding
