@@ -21,7 +21,7 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
   const auto& nodes_P = pair.P.bvh().nodes();
   const auto& nodes_S = pair.S.bvh().nodes();
   int64_t leaf_tests = 0;
-  // The descent prunes on the bounding spheres and the six face axes only:
+  // The descent prunes on the six face axes only:
   // kept pairs (most of those tested) would pay for all nine edge axes too.
   // A leaf pair gets every axis once, with its separating direction.
   DescendBvhPair(
