@@ -85,19 +85,22 @@ inline double AxisGap(const ProbeBoxInS& a, const BvhNode& b, double enough,
                       Vector3* axis_S = nullptr) {
   const internal::BoxPair p(a, b);
   double gap = -1e300;
-  Vector3 axis_B = Vector3::UnitX();
-  auto offer = [&](double g, const Vector3& axis, double along) {
+  // The axis of the largest gap so far, as a code (built once at the end):
+  // 0-2 B's face i, 3-5 A's face j, 6-14 edge pair (i, j), 15 centres.
+  int best = 0;
+  double best_sign = 1.0, best_len = 1.0;
+  auto offer = [&](double g, int code, double along, double len) {
     if (g > gap) {
       gap = g;
-      if constexpr (kTrackAxis) axis_B = along >= 0.0 ? axis : Vector3(-axis);
+      if constexpr (kTrackAxis) best = code, best_sign = along, best_len = len;
     }
   };
   for (int i = 0; i < 3; ++i)
-    offer(std::abs(p.t[i]) - p.hb[i] - p.absR.row(i).dot(p.ha), Vector3::Unit(i), p.t[i]);
+    offer(std::abs(p.t[i]) - p.hb[i] - p.absR.row(i).dot(p.ha), i, p.t[i], 1.0);
   if (gap > enough) return gap;
   for (int j = 0; j < 3; ++j) {
     const double along = p.t.dot(p.R.col(j));
-    offer(std::abs(along) - p.absR.col(j).dot(p.hb) - p.ha[j], p.R.col(j), along);
+    offer(std::abs(along) - p.absR.col(j).dot(p.hb) - p.ha[j], 3 + j, along, 1.0);
   }
   if (gap > enough) return gap;
   if constexpr (kAxes != BoxAxes::kFaces) {
@@ -116,20 +119,29 @@ inline double AxisGap(const ProbeBoxInS& a, const BvhNode& b, double enough,
         const double d = std::abs(proj) - r;
         if (d <= 0.0 ? d <= gap : (gap > 0.0 && d * d <= gap * gap * len2)) continue;
         const double len = std::sqrt(len2);
-        offer(d / len, Vector3::Unit(i).cross(p.R.col(j)) / len, proj);
+        offer(d / len, 6 + 3 * i + j, proj, len);
         if (gap > enough) return gap;
       }
     }
   }
+  double t_norm = 0.0;
   if constexpr (kAxes == BoxAxes::kFacesEdgesCentres) {
-    const double t_norm = p.t.norm();
+    t_norm = p.t.norm();
     if (t_norm > 0.0) {
       const Vector3 c = p.t / t_norm;
-      offer(t_norm - c.cwiseAbs().dot(p.hb) - (p.R.transpose() * c).cwiseAbs().dot(p.ha), c,
-            1.0);
+      offer(t_norm - c.cwiseAbs().dot(p.hb) - (p.R.transpose() * c).cwiseAbs().dot(p.ha), 15,
+            1.0, 1.0);
     }
   }
-  if constexpr (kTrackAxis) *axis_S = b.R_MB * axis_B;
+  if constexpr (kTrackAxis) {
+    Vector3 axis_B;
+    if (best < 3) axis_B = Vector3::Unit(best);
+    else if (best < 6) axis_B = p.R.col(best - 3);
+    else if (best < 15) axis_B = Vector3::Unit((best - 6) / 3).cross(p.R.col((best - 6) % 3)) / best_len;
+    else axis_B = p.t / t_norm;
+    if (best_sign < 0.0) axis_B = -axis_B;
+    *axis_S = b.R_MB * axis_B;
+  }
   return gap;
 }
 
