@@ -198,6 +198,7 @@ inline bool BoxesWithin(const ProbeBoxInS& a, const BvhNode& b, double distance,
 // The times s in [lo, hi] within [0, s_max] at which box A moved by
 // s * sweep_S can overlap box b: on every axis the projections must overlap
 // at the same time. Returns false if that interval is empty.
+template <BoxAxes kAxes = BoxAxes::kFacesEdges>
 inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
                                     const Vector3& sweep_S, double s_max, double* s_lo,
                                     double* s_hi) {
@@ -236,6 +237,11 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
   for (int j = 0; j < 3; ++j)
     if (!clip(p.t.dot(p.R.col(j)), d.dot(p.R.col(j)), p.absR.col(j).dot(p.hb) + p.ha[j]))
       return false;
+  if constexpr (kAxes == BoxAxes::kFaces) {
+    *s_lo = lo;
+    *s_hi = hi;
+    return true;
+  }
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {

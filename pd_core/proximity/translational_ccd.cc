@@ -119,7 +119,10 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   DescendBvhPair<DescentOrder::kBestFirst>(
       bvh_P, bvh_S,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi))
+        const bool leaves = a.is_leaf() && b.is_leaf();
+        if (!(leaves ? SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi)
+                     : SweptBoxContactInterval<BoxAxes::kFaces>(probe_box(a), b, sweep_S,
+                                                                s_best, &lo, &hi)))
           return false;
         *key = lo;
         return true;
