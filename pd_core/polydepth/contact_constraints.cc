@@ -68,7 +68,7 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
   ProbeBoxMemo probe_box(pair.X_SP, q_S);
   ForEachLeafPairNear(
       pair, q_S, q_S, distance,
-      [&](const BvhNode& a, const BvhNode& b) { return BoxesWithin(probe_box(a), b, distance); },
+      [&](const BvhNode& a, const BvhNode& b) { return NodesWithin(probe_box(a), a, b, distance); },
       [&](int ip, int is) {
        return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
         if (pair.counters) ++pair.counters->triangle_tests;

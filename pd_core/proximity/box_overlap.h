@@ -186,13 +186,25 @@ inline double BoxGap(const ProbeBoxInS& a, const BvhNode& b, double enough) {
 // spheres of the boxes decide most far pairs for a fraction of the cost of
 // the separating axes (no rotation products). When the spheres do not, the
 // separating-axis bound is written to *gap_bound if given (a descent key).
+template <BoxAxes kAxes = BoxAxes::kFacesEdges>
 inline bool BoxesWithin(const ProbeBoxInS& a, const BvhNode& b, double distance,
                         double* gap_bound = nullptr) {
   const double reach = a.half_A->norm() + b.half_B.norm() + distance;
   if ((a.p_SA - b.center_M).squaredNorm() > reach * reach) return false;
-  const double gap = BoxGapLowerBound(a, b, distance);
+  const double gap = AxisGap<kAxes>(a, b, distance);
   if (gap_bound != nullptr) *gap_bound = gap;
   return gap <= distance;
+}
+
+// BoxesWithin for a descent: the six face axes on a pair with an internal
+// node (kept pairs, most of a descent's tests, then skip the nine edge-edge
+// axes; the few extra pairs kept are settled below), all 15 on leaf pairs,
+// so the leaf pairs accepted are the same.
+inline bool NodesWithin(const ProbeBoxInS& a, const BvhNode& node_a, const BvhNode& b,
+                        double distance, double* gap_bound = nullptr) {
+  return node_a.is_leaf() && b.is_leaf()
+             ? BoxesWithin(a, b, distance, gap_bound)
+             : BoxesWithin<BoxAxes::kFaces>(a, b, distance, gap_bound);
 }
 
 // The times s in [lo, hi] within [0, s_max] at which box A moved by

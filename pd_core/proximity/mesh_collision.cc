@@ -51,7 +51,7 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, Collision
   ForEachLeafPairNear(
       pair, offset_S, offset_S, 0.0,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        return BoxesWithin(probe_box(a), b, 0.0, key);  // deepest overlap first
+        return NodesWithin(probe_box(a), a, b, 0.0, key);  // deepest overlap first
       },
       [&](int ip, int is) {
         return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
