@@ -17,8 +17,8 @@
 //     on the contact space.
 //  4. Localisation: feature pairs within contact_tol give half-spaces
 //     n_i·q >= c_i in translation space.
-//  5. In-projection: min |q| subject to them (an LCP solved by projected
-//     Gauss-Seidel to convergence).
+//  5. In-projection: min |q| subject to them (exact active-set solve,
+//     min_norm_point.h).
 //  6. Repeat 3-5 until |q| stops improving by more than convergence_tol.
 #include <cstdint>
 #include <memory>

@@ -203,14 +203,14 @@ TEST(GeometryThread, QueriesOf20msStillGetAWrenchEveryTick) {
   EXPECT_EQ(s.renderer.limiter.nonfinite, 0);
 }
 
-// The same on a real mesh scene whose cold queries really take tens of
-// milliseconds: CGAL knot1 (6.4k triangles, 5 cm) on the refined elephant
+// The same on a real mesh scene whose cold queries really take 6 ms or more
+// (tens of ms before this session's PolyDepth speedups; 9-15 ms now): CGAL knot1 (6.4k triangles, 5 cm) on the refined elephant
 // (89k triangles; bench/scenes/knot_tool_elephant_bunny_164k.yaml without the
 // bunny), PolyDepth with no time budget. The device jumps 7 mm along the
 // elephant's back every 150 ms (a new contact far from the last). The test
-// measures the queries' times (worker, polled) and asserts they took tens of
-// ms.
-TEST(GeometryThread, RealMeshColdQueriesOfTensOfMsStillGetAWrenchEveryTick) {
+// measures the queries' times (worker, polled) and asserts the longest took
+// at least kSlowQuery: if PolyDepth gets that fast here, pick a harder scene.
+TEST(GeometryThread, RealMeshColdQueriesOfManyMsStillGetAWrenchEveryTick) {
   PD_REQUIRE_FILE(test::MeshDir() + "/refined_elephant.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(test::MeshDir() + "/knot1.off", "run scripts/fetch_meshes.sh");
   SceneConfig config = LoadSceneConfig(test::BenchSceneDir() + "/knot_tool_elephant_bunny_164k.yaml");
@@ -243,16 +243,18 @@ TEST(GeometryThread, RealMeshColdQueriesOfTensOfMsStillGetAWrenchEveryTick) {
   ASSERT_TRUE(s.geometry_thread);
   std::printf("longest query %.1f ms, %ld answers, %zu wrenches\n", max_query_us * 1e-3,
               static_cast<long>(s.renderer.model_updates), sink.n);
-  // The scene is what the test claims: its cold queries take tens of ms.
-  EXPECT_GE(max_query_us, 10'000.0);
+  // The scene is what the test claims: its cold queries take 6 ms or more.
+  constexpr double kSlowQuery_us = 6'000.0;
+  EXPECT_GE(max_query_us, kSlowQuery_us);
   EXPECT_EQ(sink.gaps, 0);
   ASSERT_GT(sink.n, 500u);
   // Wrenches kept coming while the queries ran: a tick that waited would
-  // leave a gap of 10 ms or more at every cold answer (8 jumps); a loaded
-  // machine may stall an unprivileged thread now and then.
-  int gaps_10ms = 0;
-  for (size_t i = 1; i < sink.n; ++i) gaps_10ms += sink.times_ns[i] - sink.times_ns[i - 1] >= 10'000'000;
-  EXPECT_LE(gaps_10ms, 2) << "wrenches waited for the cold queries (longest " << max_query_us << " us)";
+  // leave a gap as long as a slow query at every cold answer (8 jumps); a
+  // loaded machine may stall an unprivileged thread now and then.
+  int long_gaps = 0;
+  for (size_t i = 1; i < sink.n; ++i)
+    long_gaps += sink.times_ns[i] - sink.times_ns[i - 1] >= kSlowQuery_us * 1e3;
+  EXPECT_LE(long_gaps, 2) << "wrenches waited for the cold queries (longest " << max_query_us << " us)";
   EXPECT_GE(s.renderer.model_updates, 8);
   // The tool is on the elephant: the device feels it push up.
   double max_up = 0.0;
