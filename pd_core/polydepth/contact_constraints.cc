@@ -4,6 +4,7 @@
 
 #include "pd_core/proximity/box_overlap.h"
 #include "pd_core/proximity/leaf_pairs_near.h"
+#include "pd_core/proximity/placed_probe_triangles.h"
 #include "pd_core/proximity/triangle_geometry.h"
 
 namespace pd {
@@ -66,17 +67,19 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
   const auto& tris_P = pair.P.mesh().triangles;
   const auto& tris_S = pair.S.mesh().triangles;
   ProbeBoxMemo probe_box(pair.X_SP, q_S);
+  PlacedProbeTriangles placed(pair, q_S);
   ForEachLeafPairNear(
       pair, q_S, q_S, distance,
       [&](const BvhNode& a, const BvhNode& b) { return NodesWithin(probe_box(a), a, b, distance); },
       [&](int ip, int is) {
        return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
         if (pair.counters) ++pair.counters->triangle_tests;
-        Vector3 p[3], s[3];
-        pair.ProbeTriangle(tp, q_S, p);
+        const PlacedProbeTriangles::Triangle& probe = placed(tp);
+        const Vector3* p = probe.p;
+        Vector3 s[3];
         pair.SceneTriangle(ts, s);
         const Vector3& nS = normals_S[ts];
-        const Vector3 nP = pair.X_SP.R_SP * normals_P[tp];
+        const Vector3& nP = probe.n;
         // A triangle wholly on one side of the other's plane, farther than
         // `distance`, is farther than that from every feature of it: no
         // constraint and no intersection (most pairs of a leaf-pair list).

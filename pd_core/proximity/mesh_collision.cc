@@ -2,6 +2,7 @@
 
 #include "pd_core/proximity/box_overlap.h"
 #include "pd_core/proximity/leaf_pairs_near.h"
+#include "pd_core/proximity/placed_probe_triangles.h"
 #include "pd_core/proximity/solid_containment.h"
 #include "pd_core/proximity/triangle_geometry.h"
 
@@ -9,9 +10,9 @@ namespace pd {
 
 namespace {
 
-bool TrianglePairIntersects(const ModelPair& pair, int tp, int ts, const Vector3& offset_S) {
-  Vector3 p[3], s[3];
-  pair.ProbeTriangle(tp, offset_S, p);
+bool TrianglePairIntersects(const ModelPair& pair, PlacedProbeTriangles& placed, int tp, int ts) {
+  const Vector3* p = placed(tp).p;
+  Vector3 s[3];
   pair.SceneTriangle(ts, s);
   if (pair.counters) ++pair.counters->triangle_tests;
   return TrianglesIntersect(p[0], p[1], p[2], s[0], s[1], s[2]);
@@ -32,6 +33,7 @@ int WithNeighbours(const CollisionModel& m, int t, int out[4]) {
 }  // namespace
 
 bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, CollisionWitness* witness) {
+  PlacedProbeTriangles placed(pair, offset_S);
   if (witness && witness->tp >= 0 && witness->tp < pair.P.mesh().num_triangles() &&
       witness->ts >= 0 && witness->ts < pair.S.mesh().num_triangles()) {
     // The contact slides a little between queries: the pair that
@@ -41,7 +43,7 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, Collision
     const int ns = WithNeighbours(pair.S, witness->ts, near_S);
     for (int i = 0; i < np; ++i)
       for (int j = 0; j < ns; ++j)
-        if (TrianglePairIntersects(pair, near_P[i], near_S[j], offset_S)) {
+        if (TrianglePairIntersects(pair, placed, near_P[i], near_S[j])) {
           *witness = {near_P[i], near_S[j]};
           return true;
         }
@@ -55,7 +57,7 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, Collision
       },
       [&](int ip, int is) {
         return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
-          hit = TrianglePairIntersects(pair, tp, ts, offset_S);
+          hit = TrianglePairIntersects(pair, placed, tp, ts);
           if (hit && witness) *witness = {tp, ts};
           return !hit;
         });

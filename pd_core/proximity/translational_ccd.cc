@@ -5,6 +5,7 @@
 #include "pd_core/proximity/box_overlap.h"
 #include "pd_core/proximity/bvh_pair_descent.h"
 #include "pd_core/proximity/candidate_pairs.h"
+#include "pd_core/proximity/placed_probe_triangles.h"
 #include "pd_core/proximity/triangle_geometry.h"
 
 namespace pd {
@@ -12,10 +13,11 @@ namespace {
 
 // Earliest contact of one probe triangle swept along sweep_S with one scene
 // triangle, over the features each owns. Lowers *s_best on a hit.
-void TriangleFirstContact(const ModelPair& pair, int tp, int ts, const Vector3& offset_S,
+void TriangleFirstContact(const ModelPair& pair, PlacedProbeTriangles& placed, int tp, int ts,
                           const Vector3& sweep_S, double* s_best, bool* hit) {
-  Vector3 p[3], s[3];
-  pair.ProbeTriangle(tp, offset_S, p);
+  const PlacedProbeTriangles::Triangle& probe = placed(tp);
+  const Vector3* p = probe.p;
+  Vector3 s[3];
   pair.SceneTriangle(ts, s);
   // Every event puts a point of each triangle on the other's plane. Along
   // the sweep, each triangle's vertices move off the other's plane at one
@@ -27,7 +29,7 @@ void TriangleFirstContact(const ModelPair& pair, int tp, int ts, const Vector3& 
   const double slack = 1e-9 * pair.size();
   const Vector3& n_S = pair.S.face_normals()[ts];
   if (TriangleStaysOffPlane(n_S, s[0], p, n_S.dot(sweep_S) * *s_best, slack)) return;
-  const Vector3 n_P = pair.X_SP.R_SP * pair.P.face_normals()[tp];
+  const Vector3& n_P = probe.n;
   if (TriangleStaysOffPlane(n_P, p[0], s, -n_P.dot(sweep_S) * *s_best, slack)) return;
   const uint8_t op = pair.P.owned_features()[tp], os = pair.S.owned_features()[ts];
   auto consider = [&](double t) {
@@ -61,11 +63,12 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   double s_best = 1.0;
   bool hit = false;
   double lo, hi;
+  PlacedProbeTriangles placed(pair, offset_S);
   // False once a contact before s_stop is known (the caller's early stop).
   auto leaf_contacts = [&](int ip, int is) {
     return ForEachTrianglePair(bvh_P, bvh_S, ip, is, [&](int tp, int ts) {
       if (pair.counters) ++pair.counters->triangle_tests;
-      TriangleFirstContact(pair, tp, ts, offset_S, sweep_S, &s_best, &hit);
+      TriangleFirstContact(pair, placed, tp, ts, sweep_S, &s_best, &hit);
       return !(hit && s_best < s_stop);
     });
   };
