@@ -95,9 +95,8 @@ bool ActiveSetMinNorm(const std::vector<ContactConstraint>& constraints,
     int set[4] = {p, 0, 0, 0};
     for (int b = 0; b < nb; ++b) set[b + 1] = basis[b];
     const int ns = nb + 1;
-    // Subsets of the old basis joined to p: by size, so the first valid one
-    // has the fewest planes.
-    bool found = false;
+    // Every subset of the old basis joined to p; of the valid ones (all give
+    // the optimum up to round-off) the shortest.
     double best = 1e300;
     Vector3 q_best;
     int best_rows[3], best_n = 0;
@@ -116,10 +115,9 @@ bool ActiveSetMinNorm(const std::vector<ContactConstraint>& constraints,
         q_best = q_try;
         std::copy(rows, rows + n, best_rows);
         best_n = n;
-        found = true;
       }
     }
-    if (!found) return false;
+    if (best_n == 0) return false;
     q = q_best;
     nb = best_n;
     std::copy(best_rows, best_rows + best_n, basis);

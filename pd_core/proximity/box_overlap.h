@@ -165,23 +165,6 @@ inline double SphereGap(const ProbeBoxInS& a, const BvhNode& b) {
   return (a.p_SA - b.center_M).norm() - a.half_A->norm() - b.half_B.norm();
 }
 
-// A lower bound on the boxes' distance (m) from the six face axes alone (no
-// edge-edge axes, no spheres: their three roots cost more than the face
-// axes save): cheaper than BoxGapLowerBound, and looser. Stops once the
-// bound exceeds `enough`.
-inline double BoxFaceGapLowerBound(const ProbeBoxInS& a, const BvhNode& b, double enough) {
-  return AxisGap<BoxAxes::kFaces>(a, b, enough);
-}
-
-// A lower bound on the boxes' distance (m): the larger of the bounding
-// spheres' gap and the separating-axis bound; exact only when > `enough`
-// is not needed (the axes stop once the bound exceeds it).
-inline double BoxGap(const ProbeBoxInS& a, const BvhNode& b, double enough) {
-  const double sphere_gap = SphereGap(a, b);
-  if (sphere_gap > enough) return sphere_gap;
-  return std::max(sphere_gap, BoxGapLowerBound(a, b, enough));
-}
-
 // True if the boxes may come within `distance` of each other. The bounding
 // spheres of the boxes decide most far pairs for a fraction of the cost of
 // the separating axes (no rotation products). When the spheres do not, the
@@ -208,9 +191,10 @@ inline bool NodesWithin(const ProbeBoxInS& a, const BvhNode& node_a, const BvhNo
 }
 
 // The times s in [lo, hi] within [0, s_max] at which box A moved by
-// s * sweep_S can overlap box b: on every axis the projections must overlap
-// at the same time. Returns false if that interval is empty.
-template <BoxAxes kAxes = BoxAxes::kFacesEdges>
+// s * sweep_S may overlap box b: the bounding spheres and, on each of the six
+// face axes, the projections must overlap at the same time (the nine
+// edge-edge axes would narrow the interval but cost more in the CCD than
+// they save). Returns false if that interval is empty.
 inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
                                     const Vector3& sweep_S, double s_max, double* s_lo,
                                     double* s_hi) {
@@ -249,24 +233,6 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
   for (int j = 0; j < 3; ++j)
     if (!clip(p.t.dot(p.R.col(j)), d.dot(p.R.col(j)), p.absR.col(j).dot(p.hb) + p.ha[j]))
       return false;
-  if constexpr (kAxes == BoxAxes::kFaces) {
-    *s_lo = lo;
-    *s_hi = hi;
-    return true;
-  }
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      if (p.absR(i, j) > 1.0 - 1e-9) continue;  // parallel axes
-      // L = e_i x R_j (unnormalised; radii use the same scaling).
-      const double proj = p.t[i2] * p.R(i1, j) - p.t[i1] * p.R(i2, j);
-      const double rate = d[i2] * p.R(i1, j) - d[i1] * p.R(i2, j);
-      const double r = p.hb[i1] * p.absR(i2, j) + p.hb[i2] * p.absR(i1, j) +
-                       p.ha[j1] * p.absR(i, j2) + p.ha[j2] * p.absR(i, j1);
-      if (!clip(proj, rate, r)) return false;
-    }
-  }
   *s_lo = lo;
   *s_hi = hi;
   return true;

@@ -21,13 +21,13 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
   const auto& nodes_P = pair.P.bvh().nodes();
   const auto& nodes_S = pair.S.bvh().nodes();
   int64_t leaf_tests = 0;
-  // The descent prunes on the six face axes only:
-  // kept pairs (most of those tested) would pay for all nine edge axes too.
-  // A leaf pair gets every axis once, with its separating direction.
+  // The descent prunes on the six face axes only (no edge-edge axes, no
+  // sphere roots): kept pairs, most of those tested, would pay for all of
+  // them. A leaf pair gets every axis once, with its separating direction.
   DescendBvhPair(
       pair.P.bvh(), pair.S.bvh(),
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        *key = BoxFaceGapLowerBound(probe_box(a), b, radius);  // nearer first
+        *key = AxisGap<BoxAxes::kFaces>(probe_box(a), b, radius);  // nearer first
         return *key <= radius;
       },
       [](double) { return true; },

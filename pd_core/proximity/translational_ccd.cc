@@ -103,7 +103,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
         // swept probe leaf stays at least this far from the scene leaf.
         if (e.StaysApart(shift_from, shift_to, rot, 0.0)) continue;
         ++tested;
-        if (SweptBoxContactInterval<BoxAxes::kFaces>(probe_box(nodes_P[e.ip]), nodes_S[e.is],
+        if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is],
                                                      sweep_S, s_best, &lo, &hi) &&
             !leaf_contacts(e.ip, e.is))
           break;
@@ -118,14 +118,11 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   }
   // Earliest possible contact first over all pending node pairs: the first
   // contact is found expanding only pairs that may touch before it, and the
-  // descent ends once the earliest pending pair is later than it. Box pairs
-  // (here and in the list above) are swept on their six face axes only: the
-  // nine edge-edge axes cost more than the looser intervals they save (the
-  // triangle tests' plane checks reject the extra pairs cheaply).
+  // descent ends once the earliest pending pair is later than it.
   DescendBvhPair<DescentOrder::kBestFirst>(
       bvh_P, bvh_S,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        if (!SweptBoxContactInterval<BoxAxes::kFaces>(probe_box(a), b, sweep_S, s_best, &lo,
+        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo,
                                                       &hi))
           return false;
         *key = lo;
