@@ -50,17 +50,27 @@ class ProbeBoxMemo {
 namespace internal {
 
 // Box A relative to the scene box b: R = R_BA, absR = |R_BA| + eps, t = p_BA.
+// The rows of R are filled one at a time (Row): a pair that B's first face
+// axes already separate never pays for the rest of the rotation product.
 struct BoxPair {
   Matrix3 R, absR;
   Vector3 t;
+  const Matrix3& R_SA;
+  const Matrix3& R_MB;
   const Vector3& ha;
   const Vector3& hb;
   BoxPair(const ProbeBoxInS& a, const BvhNode& b)
-      : R(b.R_MB.transpose() * a.R_SA),
-        t(b.R_MB.transpose() * (a.p_SA - b.center_M)),
+      : t(b.R_MB.transpose() * (a.p_SA - b.center_M)),
+        R_SA(a.R_SA),
+        R_MB(b.R_MB),
         ha(*a.half_A),
-        hb(b.half_B) {
-    absR = R.cwiseAbs().array() + 1e-12;
+        hb(b.half_B) {}
+  void Row(int i) {
+    R.row(i) = R_MB.col(i).transpose() * R_SA;
+    absR.row(i) = R.row(i).cwiseAbs().array() + 1e-12;
+  }
+  void AllRows() {
+    for (int i = 0; i < 3; ++i) Row(i);
   }
 };
 
@@ -83,7 +93,7 @@ enum class BoxAxes {
 template <BoxAxes kAxes, bool kTrackAxis = false>
 inline double AxisGap(const ProbeBoxInS& a, const BvhNode& b, double enough,
                       Vector3* axis_S = nullptr) {
-  const internal::BoxPair p(a, b);
+  internal::BoxPair p(a, b);
   double gap = -1e300;
   // The axis of the largest gap so far, as a code (built once at the end):
   // 0-2 B's face i, 3-5 A's face j, 6-14 edge pair (i, j), 15 centres.
@@ -95,9 +105,11 @@ inline double AxisGap(const ProbeBoxInS& a, const BvhNode& b, double enough,
       if constexpr (kTrackAxis) best = code, best_sign = along, best_len = len;
     }
   };
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < 3; ++i) {
+    p.Row(i);
     offer(std::abs(p.t[i]) - p.hb[i] - p.absR.row(i).dot(p.ha), i, p.t[i], 1.0);
-  if (gap > enough) return gap;
+    if (gap > enough) return gap;
+  }
   for (int j = 0; j < 3; ++j) {
     const double along = p.t.dot(p.R.col(j));
     offer(std::abs(along) - p.absR.col(j).dot(p.hb) - p.ha[j], 3 + j, along, 1.0);
@@ -216,7 +228,8 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
       if (lo > hi) return false;
     }
   }
-  const internal::BoxPair p(a, b);
+  internal::BoxPair p(a, b);
+  p.AllRows();
   const Vector3 d = b.R_MB.transpose() * sweep_S;  // sweep in B
   auto clip = [&](double center, double rate, double radius) {
     // |center + s * rate| <= radius
