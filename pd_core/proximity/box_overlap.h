@@ -69,9 +69,6 @@ struct BoxPair {
     R.row(i) = R_MB.col(i).transpose() * R_SA;
     absR.row(i) = R.row(i).cwiseAbs().array() + 1e-12;
   }
-  void AllRows() {
-    for (int i = 0; i < 3; ++i) Row(i);
-  }
 };
 
 }  // namespace internal
@@ -229,7 +226,6 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
     }
   }
   internal::BoxPair p(a, b);
-  p.AllRows();
   const Vector3 d = b.R_MB.transpose() * sweep_S;  // sweep in B
   auto clip = [&](double center, double rate, double radius) {
     // |center + s * rate| <= radius
@@ -241,8 +237,10 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
     hi = std::min(hi, t1);
     return lo <= hi;
   };
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < 3; ++i) {
+    p.Row(i);
     if (!clip(p.t[i], d[i], p.hb[i] + p.absR.row(i).dot(p.ha))) return false;
+  }
   for (int j = 0; j < 3; ++j)
     if (!clip(p.t.dot(p.R.col(j)), d.dot(p.R.col(j)), p.absR.col(j).dot(p.hb) + p.ha[j]))
       return false;
