@@ -133,7 +133,13 @@ struct PolyDepthSolver::Impl {
   std::vector<Vector3> inner_starts;  // cold: free probes below the best answer
   std::mt19937_64 rng;
   CandidatePairs candidates;  // leaf pairs near the last contact (warm start)
-  CollisionWitness witness;   // a triangle pair that intersected lately
+  // Triangle pairs that intersected lately: at the query poses (the next
+  // query's own collision test and the cross-check's probes start from it),
+  // and at the iterates. Kept apart: an iterate's pair, near the answer,
+  // rarely intersects at the next query pose, millimetres deeper (cow_armadillo
+  // median 50 -> 48.5 us, work 833 -> 814 tests).
+  CollisionWitness query_witness;
+  CollisionWitness witness;
   ProximityCounters counters;
   std::vector<ContactConstraint> previous_constraints;  // at the previous answer
   std::vector<ContactConstraint> unit_constraints;      // scratch of ClearingDirection
@@ -269,6 +275,7 @@ void PolyDepthSolver::ResetWarmStart() {
   impl_->candidates.Invalidate();
   impl_->previous_constraints.clear();
   impl_->witness = CollisionWitness{};
+  impl_->query_witness = CollisionWitness{};
   impl_->anchor_depth = 0.0;
   impl_->check_next = -1;
   impl_->has_previous = false;
@@ -376,7 +383,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     }
   }
 
-  result.in_collision = InCollision(pair, Vector3::Zero(), &s.witness);
+  result.in_collision = InCollision(pair, Vector3::Zero(), &s.query_witness);
   if (!result.in_collision) {
     // Remember this free pose: the next contact starts from it.
     s.has_previous = false;
@@ -612,7 +619,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       // collision test, box + triangle tests: knot1_camel 163 -> 61,
       // knot1_bunny 189 -> 114, bull_bunny 571 -> 211; cow_armadillo and
       // fandisk_elephant ~150 either way, their broad contact moves off it).
-      CollisionWitness at_query = s.witness;
+      CollisionWitness at_query = s.query_witness;
       if (InCollision(pair, q0, &at_query)) continue;
       bool touched = false;
       const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
