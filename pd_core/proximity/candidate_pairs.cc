@@ -35,7 +35,8 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
   // The descent prunes on the six face axes only (no edge-edge axes, no
   // sphere roots): kept pairs, most of those tested, would pay for all of
   // them. A leaf pair gets its separating direction on the face axes, and on
-  // every axis if it is nearer than kFullTestGap radii along them.
+  // every axis if it is nearer than kFullTestGap radii along them (the
+  // descent hands it its face-axis gap as the key).
   DescendBvhPair(
       pair.P.bvh(), pair.S.bvh(),
       [&](const BvhNode& a, const BvhNode& b, double* key) {
@@ -43,15 +44,17 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
         return *key <= radius;
       },
       [](double) { return true; },
-      [&](int ip, int is) {
+      [&](int ip, int is, double face_gap) {
         ++leaf_tests;
         const ProbeBoxInS& a = probe_box(nodes_P[ip]);
         Vector3 axis_S;
-        double axis_gap = AxisGap<BoxAxes::kFaces, true>(a, nodes_S[is], kNoEarlyExit, &axis_S);
-        double gap = axis_gap;
-        if (axis_gap <= kFullTestGap * radius) {
+        double axis_gap, gap;
+        if (face_gap <= kFullTestGap * radius) {
           axis_gap = SeparatingAxisGap(a, nodes_S[is], &axis_S, radius);
           gap = std::max(axis_gap, SphereGap(a, nodes_S[is]));
+        } else {
+          // The same face axes again, for the axis the key did not keep.
+          axis_gap = gap = AxisGap<BoxAxes::kFaces, true>(a, nodes_S[is], kNoEarlyExit, &axis_S);
         }
         if (gap <= radius) entries_.push_back({ip, is, gap, axis_S, axis_gap});
         return true;

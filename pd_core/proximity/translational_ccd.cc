@@ -103,8 +103,8 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
         // swept probe leaf stays at least this far from the scene leaf.
         if (e.StaysApart(shift_from, shift_to, rot, 0.0)) continue;
         ++tested;
-        if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is],
-                                                     sweep_S, s_best, &lo, &hi) &&
+        if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is], sweep_S, s_best,
+                                    &lo, &hi) &&
             !leaf_contacts(e.ip, e.is))
           break;
       }
@@ -122,9 +122,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   DescendBvhPair<DescentOrder::kBestFirst>(
       bvh_P, bvh_S,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo,
-                                                      &hi))
-          return false;
+        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi)) return false;
         *key = lo;
         return true;
       },

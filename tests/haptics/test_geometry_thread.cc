@@ -204,7 +204,8 @@ TEST(GeometryThread, QueriesOf20msStillGetAWrenchEveryTick) {
 }
 
 // The same on a real mesh scene whose cold queries really take 4 ms or more
-// (tens of ms before this session's PolyDepth speedups; 6-15 ms now): CGAL knot1 (6.4k triangles, 5 cm) on the refined elephant
+// (6-15 ms at c86ceb8; tens of ms before issue 10's PolyDepth speedups):
+// CGAL knot1 (6.4k triangles, 5 cm) on the refined elephant
 // (89k triangles; bench/scenes/knot_tool_elephant_bunny_164k.yaml without the
 // bunny), PolyDepth with no time budget. The device jumps 7 mm along the
 // elephant's back every 150 ms (a new contact far from the last). The test
