@@ -287,7 +287,9 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
         "Cold restarts = colliding poses after the first where no coherent start gave an answer; "
         "cross-checks = queries that ran part of the check of a coherent answer grown much deeper "
         "than its anchor (free directions around the query inside the answer's length, four per "
-        "query; a shorter answer on the same side wins). An answer counts as free only if the tool is also free "
+        "query; a shorter answer on the same side wins), or one probe back along the anchor's "
+        "direction when the answer has turned from it while growing. An answer counts as free "
+        "only if the tool is also free "
      << G(kHapticFreeMargin) << " x pair size further out along it. Reference: "
      << run.settings.haptic_ref << " colliding poses per path, spread evenly, no hint.\n\n";
   md << "| Pair | Tool / object tris | Motion | Poses (colliding) | PD median / p99 / p99.9 / max us "

@@ -53,7 +53,8 @@ struct PenetrationResult {
   // A coherent answer had grown much deeper than its anchor and this query
   // ran part of the check for a shorter one (free directions around the
   // query inside the answer's length, a few per query; the shorter answer on
-  // the same side wins).
+  // the same side wins), or probed once back along the direction of the
+  // shallowest answer since the last check, which it had turned from.
   bool cross_checked = false;
   // Times the answer was found inside a pocket of free space thinner than
   // PolyDepthOptions::pocket_thickness (it is moved out of the pocket when a

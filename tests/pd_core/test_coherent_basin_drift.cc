@@ -1,0 +1,83 @@
+// A coherent answer that follows a drifting local optimum on real meshes:
+// 28 poses of bench_pd's fandisk_elephant haptic path (poses 440-468, 1 ms
+// apart, interpolated here between the two ends), where the followed answer
+// turns away from its earlier direction and grows while a shallower escape
+// opens back toward that direction. Scored against the independent reference
+// PD at the last pose.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "pd_core/mesh/load_mesh.h"
+#include "pd_core/polydepth/polydepth.h"
+#include "pd_core/reference/reference_pd.h"
+#include "tests/prerequisites.h"
+
+namespace pd {
+namespace {
+
+using Model = std::shared_ptr<const CollisionModel>;
+
+Model LoadScaled(const std::string& file, double scale) {
+  TriangleMesh mesh = LoadMesh(std::string(PD_TEST_MESH_DIR) + "/" + file).mesh;
+  for (Vector3& v : mesh.vertices) v *= scale;
+  return CollisionModel::Build(std::move(mesh));
+}
+
+Isometry3 Pose(const Vector3& p, const Quaternion& q) {
+  Isometry3 X = Isometry3::Identity();
+  X.linear() = q.normalized().toRotationMatrix();
+  X.translation() = p;
+  return X;
+}
+
+// Before the probe back along the shallowest answer's direction (step 2c of
+// PolyDepthSolver::Solve), the answer at the last pose was 1.72 mm against
+// the reference's 1.08 (+59%: the bench's worst sampled pose on this path);
+// the 2b cross-check only starts at 1.2x its anchor plus 5e-3 of the size.
+TEST(CoherentBasinDrift, FandiskOnElephantAnswerReturnsToTheShallowerEscape) {
+  for (const char* f : {"fandisk.off", "refined_elephant.off"})
+    PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
+  // Scales and poses (tool in the object's frame) as bench_pd makes them.
+  const Model tool = LoadScaled("fandisk.off", 0.034431803204303821);
+  const Model object = LoadScaled("refined_elephant.off", 0.12763984046501484);
+  const Vector3 p0(0.043860045513402203, -0.023996979285694404, 0.026112222875851313);
+  const Quaternion q0(0.79013238350542736, 0.24056990352443952, 0.54975462791130669,
+                      -0.12484705500881792);
+  const Vector3 p1(0.043271143390655548, -0.020344178078998333, 0.02178685156320526);
+  const Quaternion q1(0.78894881639903036, 0.23933698127630806, 0.55064487332792467,
+                      -0.13064378275978922);
+  const Isometry3 X_WS = Isometry3::Identity();
+  PolyDepthSolver solver(tool, object);
+  constexpr int kSteps = 28;
+  PenetrationResult r;
+  Isometry3 X_WP;
+  double shallowest = 1e300;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double t = static_cast<double>(i) / kSteps;
+    X_WP = Pose((1.0 - t) * p0 + t * p1, q0.slerp(t, q1));
+    r = solver.Solve(X_WP, X_WS, true);
+    ASSERT_TRUE(r.in_collision) << "pose " << i;
+    ASSERT_TRUE(r.valid) << "pose " << i;
+    EXPECT_FALSE(r.warm_start_failed) << "pose " << i;
+    shallowest = std::min(shallowest, r.depth);
+  }
+  EXPECT_FALSE(ReferenceInCollision(tool->mesh(), X_WP, true, object->mesh(), X_WS, true,
+                                    r.translation_W));
+  // The bench's reference settings (128 directions, 4 refinements x 24).
+  ReferencePdOptions ro;
+  ro.num_directions = 128;
+  ro.num_refine_starts = 4;
+  ro.refine_iterations = 24;
+  const ReferencePdResult ref =
+      ReferencePenetrationDepth(tool->mesh(), X_WP, true, object->mesh(), X_WS, true, ro);
+  ASSERT_TRUE(ref.in_collision);
+  // The path deepens by a few percent here; the followed optimum grew 40%
+  // above the shallowest answer before the fix.
+  EXPECT_LE(r.depth, 1.05 * ref.depth) << "reference " << ref.depth;
+  EXPECT_LE(r.depth, 1.15 * shallowest);
+}
+
+}  // namespace
+}  // namespace pd
