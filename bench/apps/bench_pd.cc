@@ -52,7 +52,7 @@ RunSettings MakeSettings(bool quick) {
   s.sweep_cases = quick ? 8 : 60;
   s.fcl_max_contacts = 100000;
   s.haptic_steps = quick ? 1000 : 3000;
-  s.haptic_ref = quick ? 4 : 16;
+  s.haptic_ref = quick ? 4 : 32;
   s.seed = 20240611;
   return s;
 }
@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
   int ref_threads = std::max(1u, std::thread::hardware_concurrency());
   app.add_flag("--quick", quick, "fewer pairs, cases and reference directions (< 2 min)");
   int haptic_ref = -1;
-  app.add_option("--haptic-ref", haptic_ref, "reference PDs per haptic path (quick 4, full 16)")
+  app.add_option("--haptic-ref", haptic_ref, "reference PDs per haptic path (quick 4, full 32)")
       ->check(CLI::Range(0, 100000));
   bool haptic_only = false;
   app.add_flag("--haptic-only", haptic_only, "run only the haptic scenario (mesh tool sliding over a mesh object)");
