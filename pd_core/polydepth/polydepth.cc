@@ -196,6 +196,23 @@ struct PolyDepthSolver::Impl {
   Initializer best_origin = Initializer::kNone;
   int iterations = 0;
 
+  // A coherent iterate that has left the list's reach (a basin switch
+  // moving the answer by millimetres) would localise and out-project by full
+  // descents from here on: the list moves to it, once per query (the next
+  // query starts near there too). cow_armadillo: p99 work -13%, same
+  // answers; a second move per query made knot1_bunny's deepest queries 15%
+  // dearer, and moving it to step 0's targets too raised every p99 and max
+  // (those targets go out and back in one query).
+  void FollowWithList(const ModelPair& pair, const PolyDepthOptions& opt, double size,
+                      const Vector3& q_S) {
+    const double contact_distance = opt.contact_tol * size;
+    if (!list_follows_iterates || !candidates.valid() ||
+        candidates.Covers(pair, q_S, q_S, 6.0 * contact_distance))
+      return;
+    candidates.Build(pair, q_S, opt.candidate_radius * size + 6.0 * contact_distance);
+    list_follows_iterates = false;
+  }
+
   // Iterates localisation, in-projection and out-projection from a contact
   // configuration q_c (free, touching) until |q| stops improving.
   // A cold start passes `abandon` to stop once it cannot beat the best.
@@ -211,17 +228,7 @@ struct PolyDepthSolver::Impl {
   for (int it = 0; it < opt.max_iterations; ++it) {
     if (s.OutOfBudget()) break;
     ++s.iterations;
-    // A coherent iterate that has left the list's reach (a basin switch
-    // moving the answer by millimetres) would localise and out-project by
-    // full descents from here on: the list moves to it, once per query (the
-    // next query starts near there too). cow_armadillo: p99 work -13%, same
-    // answers; a second move per query made knot1_bunny's deepest queries
-    // 15% dearer.
-    if (origin == Initializer::kMotionCoherence && s.list_follows_iterates &&
-        s.candidates.valid() && !s.candidates.Covers(pair, q_c, q_c, 6.0 * contact_distance)) {
-      s.candidates.Build(pair, q_c, opt.candidate_radius * size + 6.0 * contact_distance);
-      s.list_follows_iterates = false;
-    }
+    if (origin == Initializer::kMotionCoherence) s.FollowWithList(pair, opt, size, q_c);
     // Localise the contact space at q_c and in-project toward the query.
     CollectContactConstraints(pair, q_c, contact_distance, &s.constraints);
     s.constraints_q_S = q_c;
