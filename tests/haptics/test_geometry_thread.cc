@@ -249,12 +249,17 @@ TEST(GeometryThread, RealMeshColdQueriesOfManyMsStillGetAWrenchEveryTick) {
   EXPECT_GE(max_query_us, kSlowQuery_us);
   EXPECT_EQ(sink.gaps, 0);
   ASSERT_GT(sink.n, 500u);
+  // No tick ran a query itself: a tick's CPU time (which a loaded machine
+  // cannot stretch, unlike its wall time) stays far below a slow query's.
+  EXPECT_LT(s.tick_cpu_max_us, 1000.0);
   // Wrenches kept coming while the queries ran: a tick that waited would
-  // leave a gap as long as a slow query at every cold answer (8 jumps); a
-  // loaded machine may stall an unprivileged thread now and then.
+  // leave a gap about as long as a slow query at every cold answer (8
+  // jumps). A loaded machine stalls an unprivileged thread now and then:
+  // with two CPU hogs on this 2-core machine, gaps of up to 7.4 ms beside
+  // queries of 13-32 ms (a 4 ms threshold counted 3-7 of them).
   int long_gaps = 0;
   for (size_t i = 1; i < sink.n; ++i)
-    long_gaps += sink.times_ns[i] - sink.times_ns[i - 1] >= kSlowQuery_us * 1e3;
+    long_gaps += sink.times_ns[i] - sink.times_ns[i - 1] >= 0.75 * max_query_us * 1e3;
   EXPECT_LE(long_gaps, 2) << "wrenches waited for the cold queries (longest " << max_query_us << " us)";
   EXPECT_GE(s.renderer.model_updates, 8);
   // The tool is on the elephant: the device feels it push up.
