@@ -21,16 +21,12 @@
 #include "pd_core/proximity/model_pair.h"
 #include "pd_core/proximity/triangle_geometry.h"
 #include "tests/prerequisites.h"
+#include "tests/pd_core/scaled_mesh_model.h"
 
 namespace pd {
 namespace {
 
-std::shared_ptr<const CollisionModel> LoadScaled(const std::string& file, double scale) {
-  const std::string path = std::string(PD_TEST_MESH_DIR) + "/" + file;
-  TriangleMesh mesh = LoadMesh(path).mesh;
-  for (Vector3& v : mesh.vertices) v *= scale;
-  return CollisionModel::Build(std::move(mesh));
-}
+using test::LoadScaled;
 
 // Distance between two triangles (m): zero if they intersect, else the
 // smallest of the vertex-triangle and edge-edge distances.

@@ -9,28 +9,18 @@
 #include <memory>
 #include <string>
 
-#include "pd_core/mesh/load_mesh.h"
 #include "pd_core/polydepth/polydepth.h"
 #include "pd_core/reference/reference_pd.h"
+#include "tests/pd_core/pair_pd_test_helpers.h"
+#include "tests/pd_core/scaled_mesh_model.h"
 #include "tests/prerequisites.h"
 
 namespace pd {
 namespace {
 
 using Model = std::shared_ptr<const CollisionModel>;
-
-Model LoadScaled(const std::string& file, double scale) {
-  TriangleMesh mesh = LoadMesh(std::string(PD_TEST_MESH_DIR) + "/" + file).mesh;
-  for (Vector3& v : mesh.vertices) v *= scale;
-  return CollisionModel::Build(std::move(mesh));
-}
-
-Isometry3 Pose(const Vector3& p, const Quaternion& q) {
-  Isometry3 X = Isometry3::Identity();
-  X.linear() = q.normalized().toRotationMatrix();
-  X.translation() = p;
-  return X;
-}
+using test::LoadScaled;
+using test::Pose;
 
 // Before the probe back along the shallowest answer's direction (step 2c of
 // PolyDepthSolver::Solve), the answer at the last pose was 1.72 mm against

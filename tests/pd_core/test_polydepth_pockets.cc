@@ -21,9 +21,12 @@
 #include "pd_core/proximity/model_pair.h"
 #include "pd_core/reference/reference_pd.h"
 #include "tests/prerequisites.h"
+#include "tests/pd_core/scaled_mesh_model.h"
 
 namespace pd {
 namespace {
+
+using test::LoadScaled;
 
 // Poses X_SP of the tool in the object's file frame (scaled), x y z qw qx qy
 // qz, 1 ms apart: bench_pd's haptic paths fandisk_elephant (poses 1200-1216)
@@ -140,13 +143,6 @@ Isometry3 PoseOf(const std::array<double, 7>& p) {
   X_WP.linear() = Quaternion(p[3], p[4], p[5], p[6]).normalized().toRotationMatrix();
   X_WP.translation() = Vector3(p[0], p[1], p[2]);
   return X_WP;
-}
-
-std::shared_ptr<const CollisionModel> LoadScaled(const std::string& file, double scale) {
-  const std::string path = std::string(PD_TEST_MESH_DIR) + "/" + file;
-  TriangleMesh mesh = LoadMesh(path).mesh;
-  for (Vector3& v : mesh.vertices) v *= scale;
-  return CollisionModel::Build(std::move(mesh));
 }
 
 void ExpectNoPocketsNoColdRestarts(const std::string& tool_file, double tool_scale,
