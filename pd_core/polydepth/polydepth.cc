@@ -153,8 +153,7 @@ struct PolyDepthSolver::Impl {
   Vector3 anchor_n_S = Vector3::Zero();  // direction of the answer that set it
   double anchor_probe_depth = 0.0;  // |q| at the last probe along anchor_n_S (m)
   int check_next = -1;        // next direction of the running cross-check; -1: none
-  double check_start_depth = 0.0;  // |q| when that check started (m)
-  Vector3 check_start_n_S = Vector3::Zero();
+  Vector3 check_start_q_S = Vector3::Zero();  // the answer when that check started (m)
   void SetAnchor(const Vector3& q_S) {
     anchor_depth = q_S.norm();
     anchor_n_S = q_S / std::max(anchor_depth, 1e-300);
@@ -644,8 +643,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   } else if (check || turned) {
     if (check && s.check_next < 0) {
       s.check_next = 0;
-      s.check_start_depth = s.best_norm;
-      s.check_start_n_S = s.best_q_S / s.best_norm;
+      s.check_start_q_S = s.best_q_S;
     }
     const Vector3 warm_q = s.best_q_S;
     const double warm_norm = s.best_norm;
@@ -695,8 +693,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       // at once, not after a further 1.2x; on fandisk_elephant one answer
       // drifted 1.8 -> 2.8 mm over a shorter one at 2.0 mm before its check).
       s.check_next = -1;
-      if (s.best_norm < s.check_start_depth) s.SetAnchor(s.best_q_S);
-      else s.SetAnchor(s.check_start_depth * s.check_start_n_S);
+      s.SetAnchor(s.best_norm < s.check_start_q_S.norm() ? s.best_q_S : s.check_start_q_S);
     }
   }
 
