@@ -126,6 +126,8 @@ struct HapticStep {
   bool cold_restart = false;  // colliding, not the first pose, warm start failed
   bool cross_checked = false; // the deep coherent answer was checked against cold starts
   double box_tests = 0, triangle_tests = 0;
+  int list_builds = 0;         // result.list_builds: leaf-pair list rebuilds
+  double list_build_us = 0.0;  // their wall time, part of pd.time_us
   double fcl_time_us = kNaN;
   bool fcl_collide = false;
   bool has_ref = false;

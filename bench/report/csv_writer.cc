@@ -91,7 +91,7 @@ std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std:
   f << "pair,index,colliding,pd_in_collision,pd_valid,pd_verified_free,pd_free_beyond,"
        "pd_converged,pd_depth_m,pd_time_us,pd_iterations,pd_contacts,pd_initializer,"
        "pd_box_tests,pd_triangle_tests,cold_restart,fcl_collide,fcl_time_us,ref_depth_m,"
-       "pd_rel_error,cross_checked\n";
+       "pd_rel_error,cross_checked,pd_list_builds,pd_list_build_us\n";
   for (const HapticPairResult& r : runs)
     for (const HapticStep& s : r.steps)
       f << r.spec.name << ',' << s.c.index << ',' << s.c.colliding << ',' << s.pd.in_collision
@@ -102,7 +102,7 @@ std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std:
         << s.fcl_collide << ',' << Num(s.fcl_time_us) << ','
         << (s.has_ref ? Num(s.ref.depth) : "") << ','
         << (s.has_ref ? Num(RelativeError(s.pd.depth, s.ref.depth)) : "") << ','
-        << s.cross_checked << '\n';
+        << s.cross_checked << ',' << s.list_builds << ',' << Num(s.list_build_us) << '\n';
   return name;
 }
 

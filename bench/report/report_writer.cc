@@ -311,6 +311,24 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
        << " | " << m.invalid << " (" << m.not_free_beyond << ") | " << m.n_ref << " | "
        << Pct(m.abs_error.mean) << " / " << Pct(m.abs_error.max) << " |\n";
   }
+  md << "\nWhere the tail comes from. A warm query keeps a list of the leaf-pair boxes near the "
+        "contact and reuses it while the tool stays within its reach; a query that slid out of "
+        "it (or whose iterate moved millimetres away) rebuilds it, descending both hierarchies "
+        "around the contact. Times of the colliding queries that rebuilt and of those that did "
+        "not, the rebuilds' own share of all PolyDepth time (`result.list_build_us`), and how "
+        "many of the slowest 1% rebuilt:\n\n"
+        "| Pair | queries that rebuilt | their median / p99 us | the others' median / p99 us | "
+        "rebuilds' share of PD time | slowest 1% that rebuilt |\n"
+        "|---|---|---|---|---|---|\n";
+  for (const HapticPairResult& r : run.haptic) {
+    const HapticSummary m = SummarizeHaptic(r);
+    md << "| " << r.spec.name << " | " << m.with_build_us.n << " of " << m.colliding << " ("
+       << Pct(m.colliding > 0 ? static_cast<double>(m.with_build_us.n) / m.colliding : kNaN, 0)
+       << ") | " << F(m.with_build_us.median) << " / " << F(m.with_build_us.p99) << " | "
+       << F(m.without_build_us.median) << " / " << F(m.without_build_us.p99) << " | "
+       << Pct(m.build_time_share, 0) << " | " << m.slowest_1pct_with_build << " of "
+       << m.slowest_1pct << " |\n";
+  }
   md << "\n| Target (haptic paths) | Pair | Measured | PASS/MISS |\n|---|---|---|---|\n";
   for (const HapticPairResult& r : run.haptic) {
     const HapticSummary m = SummarizeHaptic(r);

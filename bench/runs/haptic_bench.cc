@@ -1,5 +1,8 @@
 #include "bench/runs/haptic_bench.h"
 
+#include <algorithm>
+#include <utility>
+
 #include "bench/runs/fcl_baselines.h"
 #include "bench/common/progress.h"
 #include "bench/runs/reference_runner.h"
@@ -44,6 +47,8 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       s.converged = r.converged;
       s.box_tests = static_cast<double>(r.box_tests);
       s.triangle_tests = static_cast<double>(r.triangle_tests);
+      s.list_builds = r.list_builds;
+      s.list_build_us = r.list_build_us;
       s.cold_restart = previous_seen && r.in_collision && r.warm_start_failed;
       s.cross_checked = r.cross_checked;
       previous_seen = true;
@@ -88,6 +93,9 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
 HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   HapticSummary m;
   std::vector<double> pd_us, free_us, fcl_us, iters, boxes, tris, err, signed_err;
+  std::vector<double> with_build_us, without_build_us;
+  std::vector<std::pair<double, bool>> time_built;  // colliding queries: time, rebuilt
+  double build_us = 0.0;
   for (const HapticStep& s : r.steps) {
     ++m.steps;
     if (s.fcl_collide != s.c.colliding) ++m.fcl_disagree;
@@ -97,6 +105,9 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
     }
     ++m.colliding;
     pd_us.push_back(s.pd.time_us);
+    (s.list_builds > 0 ? with_build_us : without_build_us).push_back(s.pd.time_us);
+    time_built.push_back({s.pd.time_us, s.list_builds > 0});
+    build_us += s.list_build_us;
     fcl_us.push_back(s.fcl_time_us);
     iters.push_back(s.pd.iterations);
     boxes.push_back(s.box_tests);
@@ -124,6 +135,16 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   m.mean_iterations = Mean(iters);
   m.mean_box_tests = Mean(boxes);
   m.mean_triangle_tests = Mean(tris);
+  m.with_build_us = Summarize(with_build_us);
+  m.without_build_us = Summarize(without_build_us);
+  const double pd_total = m.pd_us.n > 0 ? m.pd_us.mean * m.pd_us.n : 0.0;
+  if (pd_total > 0.0) m.build_time_share = build_us / pd_total;
+  // The slowest 1% (at least one query), slowest first.
+  std::sort(time_built.begin(), time_built.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
+  m.slowest_1pct = std::min<int>(static_cast<int>(time_built.size()),
+                                 std::max(1, static_cast<int>(time_built.size()) / 100));
+  for (int i = 0; i < m.slowest_1pct; ++i) m.slowest_1pct_with_build += time_built[i].second;
   m.abs_error = Summarize(err);
   m.signed_mean_error = Mean(signed_err);
   return m;

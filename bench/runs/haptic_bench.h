@@ -20,6 +20,12 @@ struct HapticSummary {
   double median_ratio = kNaN, p99_ratio = kNaN;  // PolyDepth / FCL, colliding poses
   double p999_us = kNaN;
   double mean_iterations = kNaN, mean_box_tests = kNaN, mean_triangle_tests = kNaN;
+  // Where the tail comes from: colliding queries that rebuilt the leaf-pair
+  // list near the contact and those that did not, the rebuilds' share of all
+  // PolyDepth time, and how many of the slowest 1% rebuilt.
+  Summary with_build_us, without_build_us;
+  double build_time_share = kNaN;
+  int slowest_1pct = 0, slowest_1pct_with_build = 0;
   int cold_restarts = 0, cross_checks = 0, not_converged = 0, invalid = 0, not_free_beyond = 0;
   int fcl_disagree = 0;    // FCL's verdict differs from the path's
   int n_ref = 0;

@@ -33,10 +33,12 @@ Blank lines and lines starting with # are skipped.
 Output (stdout): one JSON object per pose line, in order:
   {"collision", "valid", "depth", "translation": [x,y,z], "normal": [x,y,z],
    "iterations", "contacts", "regions": [{"point", "normal", "local_depth"}],
-   "initializer", "converged", "time_us"}
+   "initializer", "converged", "list_builds", "list_build_us", "time_us"}
 all vectors in W, lengths in metres; translation moves the probe out of
 collision; time_us is solver time only; converged is false when --max-work or
---max-time-us stopped the search early (the answer is still verified free). A malformed line (wrong number of
+--max-time-us stopped the search early (the answer is still verified free);
+list_builds counts the --coherent query's rebuilds of its list of leaf pairs
+near the contact (0 when cold), list_build_us is their share of time_us. A malformed line (wrong number of
 fields, not a number, NaN/inf, quaternion norm not within 1e-3 of 1) gives
 {"error": "line N: ..."} with N counting every input line from 1, and the
 following lines are still answered.
@@ -64,6 +66,8 @@ nlohmann::ordered_json ToJson(const pd::PenetrationResult& r) {
           {"regions", regions},
           {"initializer", pd::InitializerName(r.initializer)},
           {"converged", r.converged},
+          {"list_builds", r.list_builds},
+          {"list_build_us", r.list_build_us},
           {"time_us", r.time_us}};
 }
 

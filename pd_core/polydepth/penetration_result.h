@@ -63,6 +63,13 @@ struct PenetrationResult {
   int pocket_escapes = 0;
   int64_t box_tests = 0;       // bounding-box tests this query made (cost counter)
   int64_t triangle_tests = 0;  // triangle-pair tests this query made
+  // Warm queries: times this query rebuilt the list of leaf pairs near the
+  // contact (the probe slid out of the last one's reach, or an iterate moved
+  // millimetres away from it; at most 2) and their wall time (microseconds,
+  // part of time_us). A rebuild descends both hierarchies around the
+  // contact: on a sliding contact it is the usual cause of a slow query.
+  int list_builds = 0;
+  double list_build_us = 0.0;
   double time_us = 0.0;  // solver wall time (microseconds)
 };
 

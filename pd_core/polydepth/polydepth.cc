@@ -139,6 +139,15 @@ struct PolyDepthSolver::Impl {
   std::mt19937_64 rng;
   CandidatePairs candidates;  // leaf pairs near the last contact (warm start)
   bool list_follows_iterates = false;  // this query may still move the list to an iterate
+  int list_builds = 0;          // this query's list builds and their wall time (us)
+  double list_build_us = 0.0;
+  void BuildList(const ModelPair& pair, const Vector3& q_center_S, double radius) {
+    const auto t0 = std::chrono::steady_clock::now();
+    candidates.Build(pair, q_center_S, radius);
+    ++list_builds;
+    list_build_us +=
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
   // Triangle pairs that intersected lately: at the query poses (the next
   // query's own collision test and the cross-check's probes start from it),
   // and at the iterates. Kept apart: an iterate's pair, near the answer,
@@ -208,7 +217,7 @@ struct PolyDepthSolver::Impl {
     if (!list_follows_iterates || !candidates.valid() ||
         candidates.Covers(pair, q_S, q_S, 6.0 * contact_distance))
       return;
-    candidates.Build(pair, q_S, opt.candidate_radius * size + 6.0 * contact_distance);
+    BuildList(pair, q_S, opt.candidate_radius * size + 6.0 * contact_distance);
     list_follows_iterates = false;
   }
 
@@ -327,6 +336,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   s.work_limit = options_.max_work;
   s.time_limit_us = options_.max_time_us;
   s.stopped_early = false;
+  s.list_builds = 0;
+  s.list_build_us = 0.0;
   const double size = pair.size();
   const double margin = options_.separation_margin * size;
   const double contact_distance = options_.contact_tol * size;
@@ -347,6 +358,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   auto finish = [&] {
     result.box_tests = s.counters.box_tests;
     result.triangle_tests = s.counters.triangle_tests;
+    result.list_builds = s.list_builds;
+    result.list_build_us = s.list_build_us;
     result.time_us = std::chrono::duration<double, std::micro>(
                          std::chrono::steady_clock::now() - s.t_start).count();
     return result;
@@ -411,7 +424,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       }
       const double lead = have_prediction && v.norm() > 0.0 ? kListLead * reach : 0.0;
       const Vector3 build_center = lead > 0.0 ? Vector3(center + lead * v.normalized()) : center;
-      s.candidates.Build(pair, build_center, reach + need);
+      s.BuildList(pair, build_center, reach + need);
     }
   }
 
