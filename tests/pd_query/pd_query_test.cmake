@@ -100,6 +100,24 @@ function(json_get out json)
   set(${out} "${value}" PARENT_SCOPE)
 endfunction()
 
+# The probe slides into the unit cube along -x, step_mm millimetres per line
+# from x = 0.95 (7 lines, depth = 1 - x), answered cold or with --coherent. A
+# macro, so the caller gets RC, NUM_LINES and LINE_1 .. LINE_7.
+macro(run_slide step_mm mode)
+  set(slide_input "")
+  foreach(slide_step RANGE 0 6)
+    math(EXPR slide_x_mm "950 - ${step_mm} * ${slide_step}")
+    string(APPEND slide_input "0.${slide_x_mm} 0.01 0 1 0 0 0\n")
+  endforeach()
+  if("${mode}" STREQUAL "coherent")
+    run_pd_query("${slide_input}" "${BOX}" "${BOX}" --coherent)
+  else()
+    run_pd_query("${slide_input}" "${BOX}" "${BOX}")
+  endif()
+  expect_equal("${RC}" 0 "${mode} exit code")
+  expect_equal("${NUM_LINES}" 7 "${mode} answers")
+endmacro()
+
 # lo <= json[path] <= hi (CMake compares numbers as doubles).
 function(expect_between json lo hi)
   json_get(value "${json}" ${ARGN})
@@ -294,21 +312,10 @@ elseif(CASE STREQUAL "budget")
   expect_equal("${RC}" 3 "negative budget exit code")
 
 elseif(CASE STREQUAL "coherent")
-  # The probe slides into the cube along -x; depth = 1 - x on every line,
-  # answered cold by default and warm-started with --coherent.
-  set(input "")
-  foreach(step RANGE 0 6)
-    math(EXPR x_mm "950 - 30 * ${step}")
-    string(APPEND input "0.${x_mm} 0.01 0 1 0 0 0\n")
-  endforeach()
+  # Depth = 1 - x on every line, answered cold by default and warm-started
+  # with --coherent.
   foreach(mode cold coherent)
-    if(mode STREQUAL "coherent")
-      run_pd_query("${input}" "${BOX}" "${BOX}" --coherent)
-    else()
-      run_pd_query("${input}" "${BOX}" "${BOX}")
-    endif()
-    expect_equal("${RC}" 0 "${mode} exit code")
-    expect_equal("${NUM_LINES}" 7 "${mode} answers")
+    run_slide(30 ${mode})
     set(warm 0)
     foreach(step RANGE 0 6)
       math(EXPR line "${step} + 1")
@@ -336,19 +343,8 @@ elseif(CASE STREQUAL "coherent_list_reuse")
   # pairs near the contact and reuses it while the probe stays within its
   # reach. Cold lines never build one; warm lines build one and then reuse
   # it; a line that builds reports the time spent, within its own time.
-  set(input "")
-  foreach(step RANGE 0 6)
-    math(EXPR x_mm "950 - 3 * ${step}")
-    string(APPEND input "0.${x_mm} 0.01 0 1 0 0 0\n")
-  endforeach()
   foreach(mode cold coherent)
-    if(mode STREQUAL "coherent")
-      run_pd_query("${input}" "${BOX}" "${BOX}" --coherent)
-    else()
-      run_pd_query("${input}" "${BOX}" "${BOX}")
-    endif()
-    expect_equal("${RC}" 0 "${mode} exit code")
-    expect_equal("${NUM_LINES}" 7 "${mode} answers")
+    run_slide(3 ${mode})
     set(builds 0)
     set(reused 0)
     foreach(line RANGE 1 7)
