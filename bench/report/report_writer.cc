@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
 
 #include "bench/runs/haptic_bench.h"
 #include "bench/report/markdown_format.h"
@@ -272,6 +273,9 @@ constexpr double kHapticMeanError = 0.01;
 
 void HapticSection(const BenchRun& run, std::ostream& md) {
   if (run.haptic.empty()) return;
+  // One summary per pair, for the three tables below.
+  std::vector<HapticSummary> summaries;
+  for (const HapticPairResult& r : run.haptic) summaries.push_back(SummarizeHaptic(r));
   md << "## Haptic scenario: a mesh tool sliding over a mesh object\n\n"
      << "What the servo loop asks of PolyDepth: one warm-started query per millisecond while a "
         "mesh tool (bounding radius "
@@ -297,8 +301,9 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
         "boxes / tris per query | cold restarts (cross-checks) | not converged | not free (+margin) | ref | "
         "mean / max \\|err\\| |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const HapticPairResult& r : run.haptic) {
-    const HapticSummary m = SummarizeHaptic(r);
+  for (size_t i = 0; i < run.haptic.size(); ++i) {
+    const HapticPairResult& r = run.haptic[i];
+    const HapticSummary& m = summaries[i];
     md << "| " << r.spec.name << " | " << r.pair.probe->triangles << " / " << r.pair.scene->triangles
        << " | " << F(r.spec.speed_m_s, 2) << " m/s, " << F(r.spec.turn_deg_s, 0) << " deg/s, "
        << F(r.spec.depth_m * 1e3, 1) << " mm | " << m.steps << " (" << m.colliding << ") | "
@@ -320,8 +325,9 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
         "| Pair | queries that rebuilt | their median / p99 us | the others' median / p99 us | "
         "rebuilds' share of PD time | slowest 1% that rebuilt |\n"
         "|---|---|---|---|---|---|\n";
-  for (const HapticPairResult& r : run.haptic) {
-    const HapticSummary m = SummarizeHaptic(r);
+  for (size_t i = 0; i < run.haptic.size(); ++i) {
+    const HapticPairResult& r = run.haptic[i];
+    const HapticSummary& m = summaries[i];
     md << "| " << r.spec.name << " | " << m.with_build_us.n << " of " << m.colliding << " ("
        << Pct(m.colliding > 0 ? static_cast<double>(m.with_build_us.n) / m.colliding : kNaN, 0)
        << ") | " << F(m.with_build_us.median) << " / " << F(m.with_build_us.p99) << " | "
@@ -330,8 +336,9 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
        << m.slowest_1pct << " |\n";
   }
   md << "\n| Target (haptic paths) | Pair | Measured | PASS/MISS |\n|---|---|---|---|\n";
-  for (const HapticPairResult& r : run.haptic) {
-    const HapticSummary m = SummarizeHaptic(r);
+  for (size_t i = 0; i < run.haptic.size(); ++i) {
+    const HapticPairResult& r = run.haptic[i];
+    const HapticSummary& m = summaries[i];
     md << "| median <= " << F(kHapticMedianRatio, 0) << "x FCL collide | " << r.spec.name << " | "
        << F(m.median_ratio, 2) << "x | " << PassMiss(m.median_ratio <= kHapticMedianRatio) << " |\n"
        << "| p99 <= " << F(kHapticP99Ratio, 0) << "x FCL collide p99 | " << r.spec.name << " | "

@@ -39,6 +39,10 @@ namespace {
 // sooner on the benchmark's haptic paths).
 constexpr double kReanchorGrowth = 1.2;
 constexpr double kReanchorFloor = 5e-3;
+// A query's iterations reach this many contact distances beyond the
+// configuration a list is built or checked around (its localisations and
+// their out-projections): a list must cover that much more.
+constexpr double kListIterationRoom = 6.0;
 // A list built while sliding is centred this fraction of its radius ahead.
 constexpr double kListLead = 0.6;
 // A list reaches as far as this many queries of the current motion (a fast
@@ -215,9 +219,9 @@ struct PolyDepthSolver::Impl {
                       const Vector3& q_S) {
     const double contact_distance = opt.contact_tol * size;
     if (!list_follows_iterates || !candidates.valid() ||
-        candidates.Covers(pair, q_S, q_S, 6.0 * contact_distance))
+        candidates.Covers(pair, q_S, q_S, kListIterationRoom * contact_distance))
       return;
-    BuildList(pair, q_S, opt.candidate_radius * size + 6.0 * contact_distance);
+    BuildList(pair, q_S, opt.candidate_radius * size + kListIterationRoom * contact_distance);
     list_follows_iterates = false;
   }
 
@@ -399,7 +403,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     const Vector3 center = have_prediction  ? q_pred
                            : s.has_previous ? s.previous_q_S
                                             : Vector3(s.previous_X_SP.p_SP - pair.X_SP.p_SP);
-    const double need = (have_prediction ? 0.0 : 2.0 * motion) + 6.0 * contact_distance;
+    const double need =
+        (have_prediction ? 0.0 : 2.0 * motion) + kListIterationRoom * contact_distance;
     if (need > kListMaxNeed * options_.candidate_radius * size) {
       // A jump: a list wide enough to cover it would hold a large part of
       // both meshes' leaf pairs (one such build took minutes on 52k x 75k
