@@ -1,7 +1,9 @@
 #pragma once
 // Bounding-volume hierarchy over a mesh's triangles: oriented boxes (axes
-// from the principal directions of the node's vertices), binary, nodes stored
-// depth-first (left child = index + 1). Oriented boxes hug the long sliver
+// from the principal directions of the node's vertices, or the mesh frame's
+// where that box is smaller), binary, split at the midpoint of the
+// triangles' centroids (see bvh.cc), nodes stored depth-first (left child =
+// index + 1). Oriented boxes hug the long sliver
 // triangles of tessellated tubes and curved surfaces far better than
 // axis-aligned ones, which is what keeps near-contact traversals short.
 // Pair queries are separating-axis tests (see box_overlap.h).
@@ -51,6 +53,7 @@ class Bvh {
   std::vector<BvhNode> nodes_;
   std::vector<int32_t> order_;
   int depth_ = 0;
+  int midpoint_levels_ = 0;  // levels split at the midpoint (Build)
 };
 
 // Node size for choosing which side of a node pair to descend.

@@ -15,8 +15,8 @@
 //   kDepthFirst  an explicit stack; each step pops one pair and pushes at
 //                most two (one side split, the lower key on top), so the
 //                stack never holds more than depth_P + depth_S + 1 entries.
-//                A fixed array serves every BVH the builder makes (median
-//                split: depth <= log2(n) + 2); deeper trees (hand-made or
+//                A fixed array serves every BVH the builder makes (depth
+//                <= about 3 log2(n) + 2, see bvh.cc); deeper trees (hand-made or
 //                loaded) get a heap stack of the right size instead of an
 //                overflow.
 //   kBestFirst   the pending pair of lowest key over the whole descent first

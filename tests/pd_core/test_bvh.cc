@@ -1,0 +1,127 @@
+// The BVH builder (pd_core/proximity/bvh.h): every triangle in exactly one
+// leaf of at most kMaxLeafTriangles, every box holding its triangles; a
+// split falls in the gap between unevenly sized groups of triangles (the
+// midpoint of their centroids, not equal counts); the depth stays within
+// about three times the balanced depth on input that makes every midpoint
+// split lopsided; and a node takes the mesh frame's axes where their box is
+// smaller than the principal-axes box.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "pd_core/proximity/bvh.h"
+
+namespace pd {
+namespace {
+
+// A small triangle (edge ~size) in the z = 0 plane at (x, y).
+void AddTriangle(TriangleMesh* mesh, double x, double y, double size) {
+  const int base = mesh->num_vertices();
+  mesh->vertices.push_back(Vector3(x, y, 0));
+  mesh->vertices.push_back(Vector3(x + size, y, 0));
+  mesh->vertices.push_back(Vector3(x, y + size, 0));
+  mesh->triangles.push_back(Eigen::Vector3i(base, base + 1, base + 2));
+}
+
+// Triangles of node `index` (every leaf below it), by the leaves' slots.
+std::vector<int> TrianglesBelow(const Bvh& bvh, int index) {
+  const BvhNode& node = bvh.nodes()[index];
+  if (node.is_leaf()) {
+    return std::vector<int>(bvh.order().begin() + node.right_or_first,
+                            bvh.order().begin() + node.right_or_first + node.count);
+  }
+  std::vector<int> out = TrianglesBelow(bvh, index + 1);
+  const std::vector<int> right = TrianglesBelow(bvh, node.right_or_first);
+  out.insert(out.end(), right.begin(), right.end());
+  return out;
+}
+
+// True if every vertex of the node's triangles lies in its box (tolerance tol).
+bool BoxHoldsItsTriangles(const Bvh& bvh, const TriangleMesh& mesh, int index, double tol) {
+  const BvhNode& node = bvh.nodes()[index];
+  for (int t : TrianglesBelow(bvh, index)) {
+    for (int k = 0; k < 3; ++k) {
+      const Vector3 p_B = node.R_MB.transpose() * (mesh.vertices[mesh.triangles[t][k]] - node.center_M);
+      if ((p_B.cwiseAbs() - node.half_B).maxCoeff() > tol) return false;
+    }
+  }
+  return true;
+}
+
+TEST(Bvh, EveryTriangleInOneLeafAndEveryBoxHoldsItsTriangles) {
+  TriangleMesh mesh;
+  // A rough spiral of 301 triangles of uneven spacing and size.
+  for (int i = 0; i < 301; ++i) {
+    const double a = 0.37 * i, r = 0.1 + 0.01 * i;
+    AddTriangle(&mesh, r * std::cos(a), r * std::sin(a) + 0.001 * (i % 7), 0.01 + 0.002 * (i % 5));
+  }
+  const Bvh bvh(mesh);
+  std::vector<int> all = TrianglesBelow(bvh, 0);
+  std::sort(all.begin(), all.end());
+  ASSERT_EQ(static_cast<int>(all.size()), mesh.num_triangles());
+  for (int t = 0; t < mesh.num_triangles(); ++t) EXPECT_EQ(all[t], t);
+  for (int i = 0; i < static_cast<int>(bvh.nodes().size()); ++i) {
+    if (bvh.nodes()[i].is_leaf()) EXPECT_LE(bvh.nodes()[i].count, Bvh::kMaxLeafTriangles);
+    EXPECT_TRUE(BoxHoldsItsTriangles(bvh, mesh, i, 1e-12)) << "node " << i;
+  }
+}
+
+TEST(Bvh, TheRootSplitFallsInTheGapBetweenUnevenGroups) {
+  // 3 triangles near x = 0 and 13 near x = 10: equal counts would put five
+  // of the far group with the near one, under one box spanning the gap.
+  TriangleMesh mesh;
+  for (int i = 0; i < 3; ++i) AddTriangle(&mesh, 0.1 * i, 0.05 * i, 0.05);
+  for (int i = 0; i < 13; ++i) AddTriangle(&mesh, 10.0 + 0.1 * i, 0.05 * (i % 3), 0.05);
+  const Bvh bvh(mesh);
+  const BvhNode& root = bvh.nodes()[0];
+  ASSERT_FALSE(root.is_leaf());
+  std::vector<int> left = TrianglesBelow(bvh, 1), right = TrianglesBelow(bvh, root.right_or_first);
+  if (left.size() > right.size()) std::swap(left, right);
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(right.size(), 13u);
+}
+
+TEST(Bvh, DepthStaysBoundedWhenEveryMidpointSplitIsLopsided) {
+  // Centroids at x = 1.5^i: the midpoint of any group's bounds leaves its
+  // last triangle alone on one side, so midpoint splits alone would make a
+  // chain as deep as the triangle count.
+  TriangleMesh mesh;
+  const int n = 400;
+  for (int i = 0; i < n; ++i) AddTriangle(&mesh, std::pow(1.5, i), 0.0, 0.1);
+  const Bvh bvh(mesh);
+  const int balanced = static_cast<int>(std::ceil(std::log2(n)));
+  EXPECT_LE(bvh.depth(), 3 * balanced + 2);
+  EXPECT_EQ(static_cast<int>(TrianglesBelow(bvh, 0).size()), n);
+}
+
+TEST(Bvh, ANodeTakesTheMeshAxesWhereTheirBoxIsSmaller) {
+  // The unit square in z = 0 as two triangles, plus slivers along its
+  // diagonal: the vertices' scatter is longest along the diagonal, whose
+  // principal-axes box is a 45-degree square of side sqrt(2), twice the
+  // area of the square's own axis-aligned box.
+  TriangleMesh mesh;
+  mesh.vertices = {Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(1, 1, 0), Vector3(0, 1, 0)};
+  mesh.triangles = {Eigen::Vector3i(0, 1, 2), Eigen::Vector3i(0, 2, 3)};
+  for (int i = 0; i < 20; ++i) {
+    const double s = 0.05 * i;
+    const int base = mesh.num_vertices();
+    mesh.vertices.push_back(Vector3(s, s, 0));
+    mesh.vertices.push_back(Vector3(s + 0.04, s + 0.04, 0));
+    mesh.vertices.push_back(Vector3(s + 0.02, s + 0.021, 0));
+    mesh.triangles.push_back(Eigen::Vector3i(base, base + 1, base + 2));
+  }
+  const Bvh bvh(mesh);
+  const BvhNode& root = bvh.nodes()[0];
+  Vector3 half = root.half_B;
+  std::sort(half.data(), half.data() + 3);
+  EXPECT_NEAR(half[0], 0.0, 1e-12);
+  EXPECT_NEAR(half[1], 0.5, 1e-12);
+  EXPECT_NEAR(half[2], 0.5, 1e-12);
+  EXPECT_TRUE(BoxHoldsItsTriangles(bvh, mesh, 0, 1e-12));
+}
+
+}  // namespace
+}  // namespace pd
