@@ -1,8 +1,8 @@
 #pragma once
 // Bounding-volume hierarchy over a mesh's triangles: oriented boxes (axes
 // from the principal directions of the node's vertices, or the mesh frame's
-// where that box is smaller), binary, split at the midpoint of the
-// triangles' centroids (see bvh.cc), nodes stored depth-first (left child =
+// where that box is smaller), binary, split where the children's surface
+// area is least (see bvh.cc), nodes stored depth-first (left child =
 // index + 1). Oriented boxes hug the long sliver
 // triangles of tessellated tubes and curved surfaces far better than
 // axis-aligned ones, which is what keeps near-contact traversals short.
@@ -48,12 +48,18 @@ class Bvh {
 
  private:
   friend struct ModelCacheAccess;  // pd_core/mesh/model_cache.cc (de)serialises the nodes
-  int Build(const TriangleMesh& mesh, std::vector<Vector3>& centroids, int begin,
-            int end, int level);
+  // A triangle as the builder reads it: its vertices, centroid and
+  // axis-aligned bounds in the mesh frame, and its index. The builder
+  // reorders these in place (its passes then read memory in order).
+  struct BuildTriangle {
+    Vector3 v[3], centroid, lo, hi;
+    int32_t t;
+  };
+  int Build(std::vector<BuildTriangle>& tris, int begin, int end, int level);
   std::vector<BvhNode> nodes_;
   std::vector<int32_t> order_;
   int depth_ = 0;
-  int midpoint_levels_ = 0;  // levels split at the midpoint (Build)
+  int cost_split_levels_ = 0;  // levels split by the surface-area cost (Build)
 };
 
 // Node size for choosing which side of a node pair to descend.

@@ -1,10 +1,10 @@
 // The BVH builder (pd_core/proximity/bvh.h): every triangle in exactly one
 // leaf of at most kMaxLeafTriangles, every box holding its triangles; a
-// split falls in the gap between unevenly sized groups of triangles (the
-// midpoint of their centroids, not equal counts); the depth stays within
-// about three times the balanced depth on input that makes every midpoint
-// split lopsided; and a node takes the mesh frame's axes where their box is
-// smaller than the principal-axes box.
+// split falls in the gap between unevenly sized groups of triangles (least
+// surface area, not equal counts); the depth stays within about three times
+// the balanced depth on input that makes every such split lopsided; and a
+// node takes the mesh frame's axes where their box is smaller than the
+// principal-axes box.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -84,10 +84,10 @@ TEST(Bvh, TheRootSplitFallsInTheGapBetweenUnevenGroups) {
   EXPECT_EQ(right.size(), 13u);
 }
 
-TEST(Bvh, DepthStaysBoundedWhenEveryMidpointSplitIsLopsided) {
-  // Centroids at x = 1.5^i: the midpoint of any group's bounds leaves its
-  // last triangle alone on one side, so midpoint splits alone would make a
-  // chain as deep as the triangle count.
+TEST(Bvh, DepthStaysBoundedWhenEveryCostSplitIsLopsided) {
+  // Centroids at x = 1.5^i: all but a group's last one or two share the
+  // lowest of the equal-width bins along x, so splits between bins alone
+  // would peel them off one by one, a chain as deep as half the count.
   TriangleMesh mesh;
   const int n = 400;
   for (int i = 0; i < n; ++i) AddTriangle(&mesh, std::pow(1.5, i), 0.0, 0.1);
