@@ -19,7 +19,7 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'D', 'M', 'O', 'D', 'E', 'L', '\0'};
 // Bump when CollisionModel, Bvh, MeshTopology or this layout changes.
-constexpr uint32_t kFormatVersion = 3;  // 2: component_vertices_; 3: midpoint-split BVH
+constexpr uint32_t kFormatVersion = 3;  // 2: component_vertices_; 3: surface-area-split BVH
 constexpr size_t kHeaderBytes = sizeof(kMagic) + 4 + 8 + 4;  // magic, version, payload size, crc
 
 uint32_t Crc32(const void* data, size_t bytes) {
