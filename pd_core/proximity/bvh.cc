@@ -17,7 +17,7 @@ Bvh::Bvh(const TriangleMesh& mesh) {
     const Vector3& a = mesh.vertices[tri[0]];
     const Vector3& b = mesh.vertices[tri[1]];
     const Vector3& c = mesh.vertices[tri[2]];
-    tris[t] = {{a, b, c}, (a + b + c) / 3.0, a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), t};
+    tris[t] = {{a, b, c}, t};
   }
   nodes_.reserve(2 * n);
   // Cost-chosen splits above this level, equal counts from it on (see Build).
@@ -74,7 +74,7 @@ double BoxArea(const Vector3& lo, const Vector3& hi) {
 // equal counts: same answers; warm haptic work -22-34% at the median and
 // -20-31% at p99; cold queries' box tests -27-46% and triangle tests
 // -27-65%; 4-12% fewer nodes (2-5% more on camel and bunny00); model builds
-// no slower. A cost-chosen split can be lopsided, so from level
+// within about 10% of before (timing noise here is as large). A cost-chosen split can be lopsided, so from level
 // cost_split_levels_ (twice the balanced depth) on the splits are into
 // equal counts: the depth stays within about three times the balanced one,
 // well inside the descents' fixed stacks.
@@ -101,10 +101,11 @@ int Bvh::Build(std::vector<BuildTriangle>& tris, int begin, int end, int level) 
       sum += d;
       sum2 += d * d.transpose();
     }
-    lo_M = lo_M.cwiseMin(b.lo);
-    hi_M = hi_M.cwiseMax(b.hi);
-    clo = clo.cwiseMin(b.centroid);
-    chi = chi.cwiseMax(b.centroid);
+    lo_M = lo_M.cwiseMin(b.lo());
+    hi_M = hi_M.cwiseMax(b.hi());
+    const Vector3 c = b.centroid();
+    clo = clo.cwiseMin(c);
+    chi = chi.cwiseMax(c);
   }
   const double num_vertices = 3.0 * (end - begin);
   const Matrix3 scatter = sum2 - sum * sum.transpose() / num_vertices;
@@ -156,9 +157,9 @@ int Bvh::Build(std::vector<BuildTriangle>& tris, int begin, int end, int level) 
     bin_hi.fill(Vector3::Constant(-1e300));
     for (int i = begin; i < end; ++i) {
       const BuildTriangle& b = tris[i];
-      const int k = std::clamp(static_cast<int>(to_bin * (b.centroid[axis] - clo[axis])), 0, kBins - 1);
-      bin_lo[k] = bin_lo[k].cwiseMin(b.lo);
-      bin_hi[k] = bin_hi[k].cwiseMax(b.hi);
+      const int k = std::clamp(static_cast<int>(to_bin * (b.centroid(axis) - clo[axis])), 0, kBins - 1);
+      bin_lo[k] = bin_lo[k].cwiseMin(b.lo());
+      bin_hi[k] = bin_hi[k].cwiseMax(b.hi());
       ++bin_n[k];
     }
     // Cost of the bins above each boundary, then sweep up from below.
@@ -192,14 +193,14 @@ int Bvh::Build(std::vector<BuildTriangle>& tris, int begin, int end, int level) 
   if (cost_split) {
     mid = static_cast<int>(
         std::partition(tris.begin() + begin, tris.begin() + end,
-                       [&](const BuildTriangle& b) { return b.centroid[axis] < split; }) -
+                       [&](const BuildTriangle& b) { return b.centroid(axis) < split; }) -
         tris.begin());
   }
   if (mid == begin || mid == end) {
     mid = (begin + end) / 2;
     std::nth_element(tris.begin() + begin, tris.begin() + mid, tris.begin() + end,
                      [&](const BuildTriangle& a, const BuildTriangle& b) {
-                       return a.centroid[axis] < b.centroid[axis];
+                       return a.centroid(axis) < b.centroid(axis);
                      });
   }
   Build(tris, begin, mid, level + 1);

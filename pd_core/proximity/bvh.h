@@ -48,12 +48,17 @@ class Bvh {
 
  private:
   friend struct ModelCacheAccess;  // pd_core/mesh/model_cache.cc (de)serialises the nodes
-  // A triangle as the builder reads it: its vertices, centroid and
-  // axis-aligned bounds in the mesh frame, and its index. The builder
-  // reorders these in place (its passes then read memory in order).
+  // A triangle as the builder reads it: its vertices in the mesh frame and
+  // its index. The builder reorders these in place (its passes then read
+  // memory in order); centroid and bounds are recomputed where needed
+  // (storing them made the records twice as large for no faster build).
   struct BuildTriangle {
-    Vector3 v[3], centroid, lo, hi;
+    Vector3 v[3];
     int32_t t;
+    double centroid(int axis) const { return (v[0][axis] + v[1][axis] + v[2][axis]) / 3.0; }
+    Vector3 centroid() const { return (v[0] + v[1] + v[2]) / 3.0; }
+    Vector3 lo() const { return v[0].cwiseMin(v[1]).cwiseMin(v[2]); }
+    Vector3 hi() const { return v[0].cwiseMax(v[1]).cwiseMax(v[2]); }
   };
   int Build(std::vector<BuildTriangle>& tris, int begin, int end, int level);
   std::vector<BvhNode> nodes_;
