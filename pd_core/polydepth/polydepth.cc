@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "pd_core/proximity/candidate_pairs.h"
+#include "pd_core/proximity/leaf_pair_record.h"
 #include "pd_core/polydepth/cold_starts.h"
 #include "pd_core/polydepth/contact_constraints.h"
 #include "pd_core/polydepth/contact_regions.h"
@@ -110,25 +111,40 @@ namespace {
 // the whole segment is free. *touched tells which. With `s_stop` (see
 // FirstContactAlongTranslation) a contact found before it ends the search:
 // *exact (if given) is false then, and the point returned lies before the
-// exact one.
+// exact one. With `record` (not with s_stop), the CCD records the leaf pairs
+// near the sweep and the record answers for the point returned if touching
+// (the localisation there follows; see leaf_pair_record.h).
 Vector3 OutProject(const ModelPair& pair, const Vector3& q_from, const Vector3& q_to,
                    double margin, bool* touched, double s_stop = -1.0,
-                   bool* exact = nullptr) {
+                   bool* exact = nullptr, LeafPairRecord* record = nullptr) {
   const Vector3 d = q_to - q_from;
   const double len = d.norm();
   if (exact) *exact = true;
+  if (record) record->Invalidate();
   if (len <= 0.0) {
     *touched = false;
     return q_to;
   }
-  const double s = FirstContactAlongTranslation(pair, q_from, d, s_stop);
+  bool recorded = false;
+  const double s = FirstContactAlongTranslation(pair, q_from, d, s_stop, record, &recorded);
   if (s < 0) {
     *touched = false;
     return q_to;
   }
   *touched = true;
   if (exact) *exact = s >= s_stop;
-  return q_from + std::max(0.0, s - margin / len) * d;
+  const Vector3 q = q_from + std::max(0.0, s - margin / len) * d;
+  if (record && recorded) {
+    record->q_S = q;
+    record->valid = true;
+  }
+  return q;
+}
+
+// OutProject recording the leaf pairs near its landing point.
+Vector3 OutProjectRecording(const ModelPair& pair, const Vector3& q_from, const Vector3& q_to,
+                            double margin, bool* touched, LeafPairRecord* record) {
+  return OutProject(pair, q_from, q_to, margin, touched, -1.0, nullptr, record);
 }
 
 }  // namespace
@@ -142,6 +158,7 @@ struct PolyDepthSolver::Impl {
   std::vector<Vector3> inner_starts;  // cold: free probes below the best answer
   std::mt19937_64 rng;
   CandidatePairs candidates;  // leaf pairs near the last contact (warm start)
+  LeafPairRecord record;      // leaf pairs near the last recorded out-projection
   bool list_follows_iterates = false;  // this query may still move the list to an iterate
   int list_builds = 0;          // this query's list builds and their wall time (us)
   double list_build_us = 0.0;
@@ -257,8 +274,9 @@ struct PolyDepthSolver::Impl {
     if (q_new.norm() >= norm_c - tol) break;  // q_c is locally optimal
     // Move toward q_new; if it is reachable free, out-project to the query.
     bool touched = false;
-    Vector3 q_next = OutProject(pair, q_c, q_new, margin, &touched);
-    if (!touched) q_next = OutProject(pair, q_new, Vector3::Zero(), margin, &touched);
+    Vector3 q_next = OutProjectRecording(pair, q_c, q_new, margin, &touched, &s.record);
+    if (!touched)
+      q_next = OutProjectRecording(pair, q_new, Vector3::Zero(), margin, &touched, &s.record);
     if (!touched) break;  // reached the query free: cannot happen when colliding
     const double norm_next = q_next.norm();
     const bool improved = norm_next < norm_c - tol;
@@ -335,6 +353,9 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   PenetrationResult result;
   ModelPair pair(*probe_, *scene_, X_WP, X_WS);
   pair.candidates = &s.candidates;
+  s.record.Invalidate();
+  s.record.distance = options_.contact_tol * pair.size();
+  pair.recorded = &s.record;
   s.counters = ProximityCounters{};
   pair.counters = &s.counters;
   s.work_limit = options_.max_work;
@@ -509,7 +530,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     auto try_from = [&](const Vector3& q0) {
       if (InCollision(pair, q0)) return false;
       bool touched = false;
-      const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
+      const Vector3 q_c =
+          OutProjectRecording(pair, q0, Vector3::Zero(), margin, &touched, &s.record);
       if (touched) s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
       return true;
     };
@@ -537,7 +559,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         const Vector3 q0 = back + offset * (back / len);
         if (InCollision(pair, q0)) continue;
         bool touched = false;
-        const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
+        const Vector3 q_c =
+            OutProjectRecording(pair, q0, Vector3::Zero(), margin, &touched, &s.record);
         if (touched) {
           s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
         } else {
@@ -681,7 +704,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       CollisionWitness at_query = s.query_witness;
       if (InCollision(pair, q0, &at_query)) return;
       bool touched = false;
-      const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
+      const Vector3 q_c =
+          OutProjectRecording(pair, q0, Vector3::Zero(), margin, &touched, &s.record);
       if (touched && q_c.norm() < s.best_norm - options_.convergence_tol * size)
         s.Iterate(pair, check_options, size, q_c, Initializer::kSamplingSearch);
     };

@@ -203,14 +203,16 @@ inline bool NodesWithin(const ProbeBoxInS& a, const BvhNode& node_a, const BvhNo
 // s * sweep_S may overlap box b: the bounding spheres and, on each of the six
 // face axes, the projections must overlap at the same time (the nine
 // edge-edge axes would narrow the interval but cost more in the CCD than
-// they save). Returns false if that interval is empty.
+// they save). Returns false if that interval is empty. With `grow` (m) > 0:
+// the times at which the boxes may come within grow of each other (the same
+// tests as BoxesWithin<BoxAxes::kFaces> at each time).
 inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
                                     const Vector3& sweep_S, double s_max, double* s_lo,
-                                    double* s_hi) {
+                                    double* s_hi, double grow = 0.0) {
   double lo = 0.0, hi = s_max;
   {
     // Bounding spheres first: |c + s sweep| <= reach, a quadratic in s.
-    const double reach = a.half_A->norm() + b.half_B.norm();
+    const double reach = a.half_A->norm() + b.half_B.norm() + grow;
     const Vector3 c = a.p_SA - b.center_M;
     const double qa = sweep_S.squaredNorm(), qb = c.dot(sweep_S),
                  qc = c.squaredNorm() - reach * reach;
@@ -239,10 +241,10 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
   };
   for (int i = 0; i < 3; ++i) {
     p.Row(i);
-    if (!clip(p.t[i], d[i], p.hb[i] + p.absR.row(i).dot(p.ha))) return false;
+    if (!clip(p.t[i], d[i], p.hb[i] + p.absR.row(i).dot(p.ha) + grow)) return false;
   }
   for (int j = 0; j < 3; ++j)
-    if (!clip(p.t.dot(p.R.col(j)), d.dot(p.R.col(j)), p.absR.col(j).dot(p.hb) + p.ha[j]))
+    if (!clip(p.t.dot(p.R.col(j)), d.dot(p.R.col(j)), p.absR.col(j).dot(p.hb) + p.ha[j] + grow))
       return false;
   *s_lo = lo;
   *s_hi = hi;

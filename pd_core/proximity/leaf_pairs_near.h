@@ -2,13 +2,17 @@
 // The leaf pairs a query at a configuration (or along a segment of them)
 // must look at: from the pair's candidate list when that covers the
 // configurations (only its near prefix, see candidate_pairs.h), otherwise
-// from a BVH descent. Both paths apply the same node test, so the caller sees
-// the same pairs either way, minus those the list proves too far.
+// from the last CCD's record when that answers for the configuration (see
+// leaf_pair_record.h), otherwise from a BVH descent. All paths apply the same
+// node test, so the caller sees the same pairs either way, minus those the
+// list proves too far and plus, from a record, a few whose ancestors the
+// descent would have rejected (their features are farther than `distance`).
 #include <algorithm>
 #include <type_traits>
 
 #include "pd_core/proximity/bvh_pair_descent.h"
 #include "pd_core/proximity/candidate_pairs.h"
+#include "pd_core/proximity/leaf_pair_record.h"
 #include "pd_core/proximity/model_pair.h"
 
 namespace pd {
@@ -53,6 +57,22 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
       if (pair.counters) pair.counters->box_tests += tested;
       return;
     }
+  }
+  const LeafPairRecord* record = pair.recorded;
+  if (record != nullptr && record->Covers(q_a_S, q_b_S, distance)) {
+    // The last CCD's leaf pairs near its landing point: the same node test
+    // on each (the pairs a descent would find are among them).
+    double unused_key;
+    const auto& nodes_P = pair.P.bvh().nodes();
+    const auto& nodes_S = pair.S.bvh().nodes();
+    int64_t tested = 0;
+    for (const LeafPairRecord::LeafPair& e : record->pairs) {
+      ++tested;
+      if (!node_test(nodes_P[e.ip], nodes_S[e.is], &unused_key)) continue;
+      if (!on_leaf_pair(e.ip, e.is)) break;
+    }
+    if (pair.counters) pair.counters->box_tests += tested;
+    return;
   }
   DescendBvhPair(pair.P.bvh(), pair.S.bvh(), node_test, [](double) { return true; }, on_leaf_pair,
                  pair.counters);

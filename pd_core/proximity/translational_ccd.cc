@@ -56,9 +56,12 @@ void TriangleFirstContact(const ModelPair& pair, PlacedProbeTriangles& placed, i
 }  // namespace
 
 double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset_S,
-                                    const Vector3& sweep_S, double s_stop) {
+                                    const Vector3& sweep_S, double s_stop,
+                                    LeafPairRecord* record, bool* record_complete) {
   const Bvh& bvh_P = pair.P.bvh();
   const Bvh& bvh_S = pair.S.bvh();
+  if (record_complete) *record_complete = false;
+  if (record) record->pairs.clear();
   if (bvh_P.empty() || bvh_S.empty()) return -1.0;
   double s_best = 1.0;
   bool hit = false;
@@ -119,14 +122,38 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   // Earliest possible contact first over all pending node pairs: the first
   // contact is found expanding only pairs that may touch before it, and the
   // descent ends once the earliest pending pair is later than it.
+  if (record == nullptr || s_stop >= 0.0) {
+    DescendBvhPair<DescentOrder::kBestFirst>(
+        bvh_P, bvh_S,
+        [&](const BvhNode& a, const BvhNode& b, double* key) {
+          if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi)) return false;
+          *key = lo;
+          return true;
+        },
+        [&](double s_lo) { return s_lo <= s_best; }, leaf_contacts, pair.counters);
+    return hit ? s_best : -1.0;
+  }
+  // Recording: boxes grown by the record's distance (with a relative slack
+  // against round-off), keyed by when they come that near. A leaf pair within
+  // the distance at some s before the first contact has every ancestor pair
+  // keyed at or before s, so it is reached and recorded; the same
+  // first contact is found (its triangle pairs are among those reached).
+  const double grow = record->distance * (1.0 + 1e-9) + 1e-12 * pair.size();
   DescendBvhPair<DescentOrder::kBestFirst>(
       bvh_P, bvh_S,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi)) return false;
+        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi, grow))
+          return false;
         *key = lo;
         return true;
       },
-      [&](double s_lo) { return s_lo <= s_best; }, leaf_contacts, pair.counters);
+      [&](double s_lo) { return s_lo <= s_best; },
+      [&](int ip, int is) {
+        record->pairs.push_back({ip, is});
+        return leaf_contacts(ip, is);
+      },
+      pair.counters);
+  if (record_complete) *record_complete = true;
   return hit ? s_best : -1.0;
 }
 

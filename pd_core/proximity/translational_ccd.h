@@ -3,6 +3,7 @@
 // [0, 1] at which the probe, moved by offset_S + s * sweep_S, touches the
 // scene surface. Exact per triangle pair (vertex-face, face-vertex and
 // edge-edge events), no fixed step count.
+#include "pd_core/proximity/leaf_pair_record.h"
 #include "pd_core/proximity/model_pair.h"
 
 namespace pd {
@@ -16,7 +17,15 @@ namespace pd {
 // earlier is out of the running). Once a contact before s_stop is found the
 // search returns it at once: a result below s_stop is a contact, an upper
 // bound on the first one. A result at or above s_stop is exact.
+//
+// `record` (optional, not with s_stop): when the search descends the
+// hierarchies, it also collects into record->pairs every leaf pair that can
+// come within record->distance at a configuration of the sweep before the
+// first contact (see leaf_pair_record.h), and returns with *record_complete
+// true; otherwise (the leaf-pair list answered) the record is incomplete.
 double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset_S,
-                                    const Vector3& sweep_S, double s_stop = -1.0);
+                                    const Vector3& sweep_S, double s_stop = -1.0,
+                                    LeafPairRecord* record = nullptr,
+                                    bool* record_complete = nullptr);
 
 }  // namespace pd

@@ -8,10 +8,14 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
+#include "pd_core/polydepth/contact_constraints.h"
 #include "pd_core/polydepth/support_plane_starts.h"
 #include "pd_core/proximity/candidate_pairs.h"
+#include "pd_core/proximity/leaf_pair_record.h"
 #include "pd_core/proximity/box_overlap.h"
 #include "pd_core/proximity/bvh_pair_descent.h"
 #include "pd_core/proximity/mesh_collision.h"
@@ -307,6 +311,123 @@ TEST_F(TranslationalCcd, BestFirstDescentFindsTheSameContactWithFewerBoxTestsOnL
   // Measured: 0.62 of depth-first's box tests (45.9k vs 74.3k).
   EXPECT_LT(best_first.box_tests, 0.8 * depth_first.box_tests)
       << "best-first " << best_first.box_tests << " vs depth-first " << depth_first.box_tests;
+}
+
+// Distance between two triangles that do not intersect: the least over the
+// 6 vertex-triangle and 9 edge-edge closest pairs.
+double TriangleDistance(const Vector3 a[3], const Vector3 b[3]) {
+  double d2 = 1e300;
+  for (int k = 0; k < 3; ++k) {
+    d2 = std::min(d2, (a[k] - ClosestPointOnTriangle(a[k], b[0], b[1], b[2])).squaredNorm());
+    d2 = std::min(d2, (b[k] - ClosestPointOnTriangle(b[k], a[0], a[1], a[2])).squaredNorm());
+    for (int j = 0; j < 3; ++j) {
+      double u, v;
+      Vector3 pa, pb;
+      d2 = std::min(d2, ClosestSegmentSegment(a[k], a[(k + 1) % 3], b[j], b[(j + 1) % 3], &u, &v,
+                                              &pa, &pb));
+    }
+  }
+  return std::sqrt(d2);
+}
+
+// A CCD that records (PolyDepth's out-projection before it localises at the
+// landing point): the same first contact, and the record holds the leaf
+// pair of every triangle pair within the record's distance at the landing
+// point (brute force over all triangle pairs), so the localisation there
+// from the record finds exactly the constraints a full descent finds, with
+// fewer box tests.
+TEST_F(TranslationalCcd, RecordHoldsEveryLeafPairNearTheLandingPointAndLocalisesTheSame) {
+  const Model P = knot1_, S = cow_;
+  std::mt19937_64 rng(17);
+  // Leaf node of each triangle, per model.
+  auto leaf_of = [](const Bvh& bvh, int num_triangles) {
+    std::vector<int> leaf(num_triangles, -1);
+    for (size_t i = 0; i < bvh.nodes().size(); ++i) {
+      const BvhNode& n = bvh.nodes()[i];
+      for (int k = 0; k < n.count; ++k) leaf[bvh.order()[n.right_or_first + k]] = i;
+    }
+    return leaf;
+  };
+  const std::vector<int> leaf_P = leaf_of(P->bvh(), P->mesh().num_triangles());
+  const std::vector<int> leaf_S = leaf_of(S->bvh(), S->mesh().num_triangles());
+  int near_pairs = 0, localisations = 0;
+  ProximityCounters with_record, by_descent;
+  for (int k = 0; k < 3; ++k) {
+    ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    for (int i : {0, 2, 5}) {
+      const Vector3 from = starts[i].q_S;
+      LeafPairRecord record;
+      // PolyDepth's default contact distance, and 30 times it: pairs that
+      // near but do not touch by the first contact are recorded too.
+      record.distance = (i == 2 ? 3e-3 : 1e-4) * pair.size();
+      bool complete = false;
+      const double s = FirstContactAlongTranslation(pair, from, -from, -1.0, &record, &complete);
+      ASSERT_TRUE(complete);
+      ASSERT_GT(s, 0.0);
+      EXPECT_EQ(s, FirstContactAlongTranslation(pair, from, -from)) << "pose " << k;
+      const Vector3 q_c = from - (s - 1e-8 * pair.size() / from.norm()) * from;
+      ASSERT_FALSE(InCollision(pair, q_c));
+      // Every triangle pair within the distance at q_c: its leaf pair is recorded.
+      const double d = record.distance;
+      std::vector<std::pair<int, int>> recorded;
+      for (const auto& e : record.pairs) recorded.push_back({e.ip, e.is});
+      std::sort(recorded.begin(), recorded.end());
+      const int n_P = P->mesh().num_triangles(), n_S = S->mesh().num_triangles();
+      for (int tp = 0; tp < n_P; ++tp) {
+        Vector3 p[3];
+        pair.ProbeTriangle(tp, q_c, p);
+        const Vector3 lo = p[0].cwiseMin(p[1]).cwiseMin(p[2]).array() - d;
+        const Vector3 hi = p[0].cwiseMax(p[1]).cwiseMax(p[2]).array() + d;
+        for (int ts = 0; ts < n_S; ++ts) {
+          Vector3 t[3];
+          pair.SceneTriangle(ts, t);
+          if ((lo.array() > t[0].cwiseMax(t[1]).cwiseMax(t[2]).array()).any() ||
+              (hi.array() < t[0].cwiseMin(t[1]).cwiseMin(t[2]).array()).any())
+            continue;
+          if (TriangleDistance(p, t) > d) continue;
+          ++near_pairs;
+          EXPECT_TRUE(std::binary_search(recorded.begin(), recorded.end(),
+                                         std::make_pair(leaf_P[tp], leaf_S[ts])))
+              << "pose " << k << " start " << i << " triangles " << tp << ", " << ts;
+        }
+      }
+      // The localisation at q_c, by descent and from the record.
+      std::vector<ContactConstraint> by_tree, by_record;
+      pair.counters = &by_descent;
+      CollectContactConstraints(pair, q_c, d, &by_tree);
+      record.q_S = q_c;
+      record.valid = true;
+      pair.recorded = &record;
+      pair.counters = &with_record;
+      CollectContactConstraints(pair, q_c, d, &by_record);
+      pair.recorded = nullptr;
+      pair.counters = nullptr;
+      auto key = [](const ContactConstraint& c) {
+        return std::make_tuple(static_cast<int>(c.kind), c.feature_P, c.feature_S);
+      };
+      auto order = [&](std::vector<ContactConstraint>& cs) {
+        std::sort(cs.begin(), cs.end(), [&](const ContactConstraint& a, const ContactConstraint& b) {
+          return key(a) < key(b);
+        });
+      };
+      order(by_tree);
+      order(by_record);
+      ASSERT_EQ(by_tree.size(), by_record.size()) << "pose " << k << " start " << i;
+      EXPECT_FALSE(by_tree.empty());
+      for (size_t j = 0; j < by_tree.size(); ++j) {
+        EXPECT_EQ(key(by_tree[j]), key(by_record[j]));
+        EXPECT_EQ(by_tree[j].n_S, by_record[j].n_S);
+        EXPECT_EQ(by_tree[j].c, by_record[j].c);
+      }
+      ++localisations;
+    }
+  }
+  EXPECT_EQ(localisations, 9);
+  EXPECT_GE(near_pairs, 9);
+  EXPECT_LT(with_record.box_tests, by_descent.box_tests / 2)
+      << with_record.box_tests << " vs " << by_descent.box_tests;
 }
 
 }  // namespace
