@@ -1,0 +1,81 @@
+// haptic_work: the haptic paths of bench_pd (haptic_paths.h) solved warm by
+// PolyDepth alone, reporting the work per colliding query (box + triangle
+// tests: deterministic, unlike time on a shared machine) and optionally
+// dumping every answer's depth, so a solver change can be A/B-checked in
+// seconds for cost and for bit-identical answers. Timing, FCL and accuracy
+// are bench_pd's job.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bench/cases/bench_models.h"
+#include "bench/cases/haptic_paths.h"
+#include "bench/cases/scenarios.h"
+#include "bench/common/stats.h"
+#include "pd_core/polydepth/polydepth.h"
+
+int main(int argc, char** argv) {
+  using namespace pd_bench;
+  CLI::App app{"Work per warm PolyDepth query on bench_pd's haptic paths"};
+  std::string mesh_dir = std::string(PD_SOURCE_DIR) + "/build/meshes";
+  std::string dump;
+  std::vector<std::string> only;
+  int steps = 3000;
+  uint64_t seed = 20240611;  // bench_pd's default seed: the same paths
+  app.add_option("--mesh-dir", mesh_dir, "directory of the .off meshes");
+  app.add_option("--dump", dump, "write 'pair index depth_m' per pose to this file");
+  app.add_option("--pairs", only, "only these haptic pairs");
+  app.add_option("--steps", steps, "poses per path (1 ms apart)");
+  app.add_option("--seed", seed, "path seed (bench_pd's --seed)");
+  CLI11_PARSE(app, argc, argv);
+
+  std::ofstream out;
+  if (!dump.empty()) {
+    out.open(dump);
+    if (!out) {
+      std::cerr << "haptic_work: cannot write " << dump << "\n";
+      return 1;
+    }
+    out.precision(17);
+  }
+  ModelCache cache(mesh_dir, 1);
+  std::printf("%-18s %6s %8s %8s %8s %8s %7s %8s %8s %6s\n", "pair", "coll", "work_p50",
+              "work_p99", "work_max", "us_p50", "us_p99", "us_max", "builds", "cold");
+  for (const HapticPairSpec& spec : DefaultHapticPairs()) {
+    if (!only.empty() && std::find(only.begin(), only.end(), spec.name) == only.end()) continue;
+    std::string why;
+    auto tool = cache.Get(spec.tool, &why, kHapticToolRadius);
+    auto object = tool ? cache.Get(spec.object, &why, kHapticObjectRadius) : nullptr;
+    if (!tool || !object) {
+      std::cerr << "haptic_work: " << spec.name << ": " << why << "\n";
+      return 1;
+    }
+    const BenchPair pair{spec.name, tool, object};
+    const HapticPath path = MakeHapticPath(pair, spec, steps, seed + 7);  // as RunHapticPair
+    const pd::Isometry3 X_WS = ScenePose(pair);
+    pd::PolyDepthSolver solver(tool->model, object->model, pd::PolyDepthOptions{});
+    std::vector<double> work, us;
+    int builds = 0, cold = 0, index = 0;
+    bool seen = false;
+    for (const Case& c : path.cases) {
+      const pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS, /*coherent=*/true);
+      if (r.in_collision) {
+        work.push_back(static_cast<double>(r.box_tests + r.triangle_tests));
+        us.push_back(r.time_us);
+        builds += r.list_builds;
+        cold += seen && r.warm_start_failed;
+      }
+      seen = true;
+      if (out) out << spec.name << ' ' << index << ' ' << r.depth << '\n';
+      ++index;
+    }
+    std::printf("%-18s %6zu %8.0f %8.0f %8.0f %8.1f %7.1f %8.1f %8d %6d\n", spec.name.c_str(),
+                work.size(), Percentile(work, 50), Percentile(work, 99), Max(work),
+                Percentile(us, 50), Percentile(us, 99), Max(us), builds, cold);
+  }
+  return 0;
+}
