@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   int steps = 3000;
   uint64_t seed = 20240611;  // bench_pd's default seed: the same paths
   app.add_option("--mesh-dir", mesh_dir, "directory of the .off meshes");
-  app.add_option("--dump", dump, "write 'pair index depth_m' per pose to this file");
+  app.add_option("--dump", dump, "write 'pair index depth_m work iterations list_builds cross_checked' per pose to this file");
   app.add_option("--pairs", only, "only these haptic pairs");
   app.add_option("--steps", steps, "poses per path (1 ms apart)");
   app.add_option("--seed", seed, "path seed (bench_pd's --seed)");
@@ -70,7 +70,10 @@ int main(int argc, char** argv) {
         cold += seen && r.warm_start_failed;
       }
       seen = true;
-      if (out) out << spec.name << ' ' << index << ' ' << r.depth << '\n';
+      if (out)
+        out << spec.name << ' ' << index << ' ' << r.depth << ' '
+            << r.box_tests + r.triangle_tests << ' ' << r.iterations << ' ' << r.list_builds
+            << ' ' << r.cross_checked << '\n';
       ++index;
     }
     std::printf("%-18s %6zu %8.0f %8.0f %8.0f %8.1f %7.1f %8.1f %8d %6d\n", spec.name.c_str(),

@@ -439,6 +439,43 @@ TEST(PolyDepth, CoherentPathStaysValidAndNearReference) {
   EXPECT_GE(checked, 2);
 }
 
+// A warm query that turns out free builds no leaf-pair list: a tool lifted
+// off a surface while still sliding along it answers from the collision
+// test alone (its descent), and the contact regained later is solved as
+// before. Lists are built while the contact lasts.
+TEST(PolyDepth, FreeWarmQueriesBuildNoLeafPairList) {
+  const double R = 0.1, r = 0.01;  // scene and probe spheres (m)
+  Model P = CollisionModel::Build(MakeIcosphere(r, 3));
+  Model S = CollisionModel::Build(MakeIcosphere(R, 5));
+  PolyDepthSolver solver(P, S);
+  const double size = R + r;
+  const Isometry3 X_WS = Pose(Vector3::Zero());
+  // Along a great circle, 1e-3 of the pair's size per query (0.11 m/s at
+  // 1 kHz), pressed in by 1e-3 of it, lifted 2e-3 clear for poses 20-39.
+  int free_queries = 0, contact_builds = 0, colliding = 0;
+  for (int i = 0; i < 60; ++i) {
+    const double theta = i * 1e-3 * size / R;
+    const bool lifted = i >= 20 && i < 40;
+    const double rho = R + r + (lifted ? 2e-3 : -1e-3) * size;
+    const Isometry3 X_WP = Pose(rho * Vector3(std::sin(theta), 0.0, std::cos(theta)));
+    const PenetrationResult res = solver.Solve(X_WP, X_WS, /*coherent=*/true);
+    if (lifted) {
+      ASSERT_FALSE(res.in_collision) << "pose " << i;
+      EXPECT_EQ(res.list_builds, 0) << "free pose " << i;
+      ++free_queries;
+    } else {
+      ASSERT_TRUE(res.in_collision) << "pose " << i;
+      ASSERT_TRUE(res.valid) << "pose " << i;
+      EXPECT_TRUE(FreeAfter(P, X_WP, S, X_WS, res)) << "pose " << i;
+      contact_builds += res.list_builds;
+      ++colliding;
+    }
+  }
+  EXPECT_EQ(free_queries, 20);
+  EXPECT_EQ(colliding, 40);
+  EXPECT_GT(contact_builds, 0);  // the slide does build lists
+}
+
 // Two solvers sharing models on two threads give the serial answers.
 TEST(PolyDepth, SolversOnDifferentThreadsMatchSerialResults) {
   Model P = CollisionModel::Build(MakeTorusKnot(2, 3, 0.12, 0.5, 48, 6));
