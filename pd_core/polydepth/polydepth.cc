@@ -71,7 +71,14 @@ constexpr double kListMaxNeed = 2.0;
 // building the next list ahead in slices over the queries the current one
 // still covers (the lists built ahead sat worse, so more rebuilds, and the
 // slices landed on queries with work of their own: p99 and max work up on
-// knot1_camel and fandisk_elephant).
+// knot1_camel and fandisk_elephant; measured again with a resumable descent
+// and the slice spread over the queries left: fresh builds fell ~85% but
+// total work rose 30-45% and every p99 and max rose). Nor does a list swept
+// along the motion (a capsule of configurations instead of a ball) last
+// longer for free: on a dense patch its entries grow with its length
+// (fandisk_elephant at 0.36 mm: 3.3k for the ball, 9.8k with a 1.2 mm
+// sweep), so the build work per millimetre slid stays the same; builds fell
+// 25-45%, p99 work did not, and fandisk's max doubled.
 constexpr double kListMaxEntries = 2000.0;
 // A cross-check of a coherent answer probes this many directions around the
 // query, this many per query (spread over queries so no query pays for the
