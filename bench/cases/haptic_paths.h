@@ -37,6 +37,9 @@ struct HapticPath {
   std::vector<Case> cases;  // one per millisecond, free ones included
 };
 
+// The path seed of a run seeded with `run_seed` (bench_pd's --seed).
+inline uint64_t HapticPathSeed(uint64_t run_seed) { return run_seed + 7; }
+
 // `steps` poses (steps * kHapticDt seconds) of the path for `spec`.
 HapticPath MakeHapticPath(const BenchPair& pair, const HapticPairSpec& spec, int steps,
                           uint64_t seed);

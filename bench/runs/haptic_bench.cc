@@ -22,7 +22,7 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
   HapticPath path;
   {
     Progress bar(tag + "making the haptic path", 1);
-    path = MakeHapticPath(pair, spec, st.haptic_steps, st.seed + 7);
+    path = MakeHapticPath(pair, spec, st.haptic_steps, HapticPathSeed(st.seed));
   }
   out.description = path.description;
   const pd::Isometry3 X_WS = ScenePose(pair);

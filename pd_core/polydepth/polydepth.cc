@@ -438,17 +438,15 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   Vector3 build_center = Vector3::Zero();
   double build_radius = 0.0;
   if (warm && (s.has_previous || s.has_previous_free)) {
-    const Vector3 center = have_prediction  ? q_pred
-                           : s.has_previous ? s.previous_q_S
-                                            : Vector3(s.previous_X_SP.p_SP - pair.X_SP.p_SP);
     const double need =
         (have_prediction ? 0.0 : 2.0 * motion) + kListIterationRoom * contact_distance;
+    const Vector3 center = have_prediction ? q_pred : s.previous_q_S;
     if (need > kListMaxNeed * options_.candidate_radius * size) {
       // A jump: a list wide enough to cover it would hold a large part of
       // both meshes' leaf pairs (one such build took minutes on 52k x 75k
       // triangles). The queries descend the hierarchies instead.
       s.candidates.Invalidate();
-    } else if (!s.candidates.Covers(pair, center, center, need)) {
+    } else if (s.has_previous && !s.candidates.Covers(pair, center, center, need)) {
       // Sliding: centre the new list ahead along the motion, where the
       // coming queries will be, so it lasts longer than one centred here.
       const Vector3 v = pair.X_SP.p_SP - s.previous_X_SP.p_SP;
@@ -476,8 +474,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // the query pose, else descends the hierarchies (stopping at the first
   // intersecting triangle pair; the last one is tried first).
   result.in_collision = InCollision(pair, Vector3::Zero(), &s.query_witness);
-  if (result.in_collision && build_pending && s.has_previous)
-    s.BuildList(pair, build_center, build_radius);
+  if (result.in_collision && build_pending) s.BuildList(pair, build_center, build_radius);
   if (!result.in_collision) {
     // Remember this free pose: the next contact starts from it.
     s.has_previous = false;
