@@ -28,11 +28,19 @@ int main(int argc, char** argv) {
   std::vector<std::string> only;
   int steps = 3000;
   uint64_t seed = kDefaultBenchSeed;  // bench_pd's: the same paths
+  pd::PolyDepthOptions options;
+  int repeat = 0;
   app.add_option("--mesh-dir", mesh_dir, "directory of the .off meshes");
   app.add_option("--dump", dump, "write 'pair index depth_m work iterations list_builds cross_checked' per pose to this file");
   app.add_option("--pairs", only, "only these haptic pairs");
   app.add_option("--steps", steps, "poses per path (1 ms apart)");
   app.add_option("--seed", seed, "path seed (bench_pd's --seed)");
+  app.add_option("--candidate-radius", options.candidate_radius,
+                 "PolyDepthOptions::candidate_radius (fraction of size) for an A/B");
+  app.add_option("--repeat", repeat,
+                 "solve each path this many more times, fresh solver each time, unreported (profiling: the solves outweigh the path set-up)");
+  app.add_option("--max-work", options.max_work,
+                 "PolyDepthOptions::max_work (box + triangle tests; 0 = unbounded)");
   CLI11_PARSE(app, argc, argv);
 
   std::ofstream out;
@@ -45,8 +53,9 @@ int main(int argc, char** argv) {
     out.precision(17);
   }
   ModelCache cache(mesh_dir, 1);
-  std::printf("%-18s %6s %8s %8s %8s %8s %7s %8s %8s %6s\n", "pair", "coll", "work_p50",
-              "work_p99", "work_max", "us_p50", "us_p99", "us_max", "builds", "cold");
+  std::printf("%-18s %6s %8s %8s %8s %8s %7s %8s %8s %6s  %s\n", "pair", "coll", "work_p50",
+              "work_p99", "work_max", "us_p50", "us_p99", "us_max", "builds", "cold",
+              "work share: collision/localisation/out-projection/list builds/other %");
   for (const HapticPairSpec& spec : DefaultHapticPairs()) {
     if (!only.empty() && std::find(only.begin(), only.end(), spec.name) == only.end()) continue;
     std::string why;
@@ -59,9 +68,18 @@ int main(int argc, char** argv) {
     const BenchPair pair{spec.name, tool, object};
     const HapticPath path = MakeHapticPath(pair, spec, steps, HapticPathSeed(seed));
     const pd::Isometry3 X_WS = ScenePose(pair);
-    pd::PolyDepthSolver solver(tool->model, object->model, pd::PolyDepthOptions{});
+    double repeat_us = 0.0;
+    for (int k = 0; k < repeat; ++k) {
+      pd::PolyDepthSolver again(tool->model, object->model, options);
+      for (const Case& c : path.cases) repeat_us += again.Solve(c.X_WP, X_WS, /*coherent=*/true).time_us;
+    }
+    if (repeat > 0)
+      std::fprintf(stderr, "%s: %d repeats, PolyDepth %.3f s\n", spec.name.c_str(), repeat,
+                   repeat_us * 1e-6);
+    pd::PolyDepthSolver solver(tool->model, object->model, options);
     std::vector<double> work, us;
     int builds = 0, cold = 0, index = 0;
+    pd::PenetrationResult::Work total;
     bool seen = false;
     for (const Case& c : path.cases) {
       const pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS, /*coherent=*/true);
@@ -69,6 +87,11 @@ int main(int argc, char** argv) {
         work.push_back(static_cast<double>(r.box_tests + r.triangle_tests));
         us.push_back(r.time_us);
         builds += r.list_builds;
+        total.collision += r.work.collision;
+        total.localisation += r.work.localisation;
+        total.out_projection += r.work.out_projection;
+        total.list_builds += r.work.list_builds;
+        total.other += r.work.other;
         cold += seen && r.warm_start_failed;
       }
       seen = true;
@@ -78,9 +101,15 @@ int main(int argc, char** argv) {
             << ' ' << r.cross_checked << '\n';
       ++index;
     }
-    std::printf("%-18s %6zu %8.0f %8.0f %8.0f %8.1f %7.1f %8.1f %8d %6d\n", spec.name.c_str(),
-                work.size(), Percentile(work, 50), Percentile(work, 99), Max(work),
-                Percentile(us, 50), Percentile(us, 99), Max(us), builds, cold);
+    const double all = std::max<double>(1.0, total.collision + total.localisation +
+                                                  total.out_projection + total.list_builds +
+                                                  total.other);
+    std::printf("%-18s %6zu %8.0f %8.0f %8.0f %8.1f %7.1f %8.1f %8d %6d  %.0f/%.0f/%.0f/%.0f/%.0f\n",
+                spec.name.c_str(), work.size(), Percentile(work, 50), Percentile(work, 99),
+                Max(work), Percentile(us, 50), Percentile(us, 99), Max(us), builds, cold,
+                100.0 * total.collision / all, 100.0 * total.localisation / all,
+                100.0 * total.out_projection / all, 100.0 * total.list_builds / all,
+                100.0 * total.other / all);
   }
   return 0;
 }

@@ -10,6 +10,7 @@
 #include "bench/common/machine_info.h"
 #include "bench/cases/scenarios.h"
 #include "pd_core/geometry/pose.h"
+#include "pd_core/polydepth/penetration_result.h"
 
 namespace pd_bench {
 
@@ -31,6 +32,7 @@ struct PdOutcome {
   int iterations = 0, contacts = 0;
   int starts = 0;             // result.starts (cold starts out-projected)
   double box_tests = 0, triangle_tests = 0;  // result.box_tests / triangle_tests (work)
+  pd::PenetrationResult::Work work;          // result.work: that work by kind of query
   // Still free kHapticFreeMargin (2e-6) of the pair's size further along the
   // answer: verified free, not resting on a touching contact.
   bool free_beyond = false;

@@ -26,6 +26,15 @@ std::ofstream Open(const std::string& path) {
   return f;
 }
 
+// result.work: box + triangle tests by kind of query.
+constexpr const char* kWorkColumns =
+    "pd_work_collision,pd_work_localisation,pd_work_out_projection,pd_work_list_builds,"
+    "pd_work_other";
+void WriteWork(std::ostream& f, const pd::PenetrationResult::Work& w) {
+  f << w.collision << ',' << w.localisation << ',' << w.out_projection << ',' << w.list_builds
+    << ',' << w.other;
+}
+
 }  // namespace
 
 std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& dir) {
@@ -36,7 +45,7 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
          "ref_depth_m,ref_time_ms,ref_directions,ref_check_pd_free,ref_answer_free,pd_rel_error,"
          "fcl_convex_collide,fcl_convex_depth_m,fcl_convex_time_us,fcl_convex_rel_error,"
          "fcl_mesh_collide,fcl_mesh_depth_m,fcl_mesh_time_us,fcl_mesh_contacts,"
-         "fcl_mesh_rel_error,pd_box_tests,pd_triangle_tests\n";
+         "fcl_mesh_rel_error,pd_box_tests,pd_triangle_tests," << kWorkColumns << "\n";
     for (const PairResult& p : run.pairs)
       for (const ScenarioResult& s : p.scenarios)
         for (const CaseRecord& r : s.cases) {
@@ -61,7 +70,9 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
               << Num(RelativeError(r.fcl.mesh_depth, ref)) << ',';
           else
             f << ",,,,,,,,,";
-          f << Num(r.pd.box_tests) << ',' << Num(r.pd.triangle_tests) << '\n';
+          f << Num(r.pd.box_tests) << ',' << Num(r.pd.triangle_tests) << ',';
+          WriteWork(f, r.pd.work);
+          f << '\n';
         }
   }
   {
@@ -91,9 +102,9 @@ std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std:
   f << "pair,index,colliding,pd_in_collision,pd_valid,pd_verified_free,pd_free_beyond,"
        "pd_converged,pd_depth_m,pd_time_us,pd_iterations,pd_contacts,pd_initializer,"
        "pd_box_tests,pd_triangle_tests,cold_restart,fcl_collide,fcl_time_us,ref_depth_m,"
-       "pd_rel_error,cross_checked,pd_list_builds,pd_list_build_us\n";
+       "pd_rel_error,cross_checked,pd_list_builds,pd_list_build_us," << kWorkColumns << "\n";
   for (const HapticPairResult& r : runs)
-    for (const HapticStep& s : r.steps)
+    for (const HapticStep& s : r.steps) {
       f << r.spec.name << ',' << s.c.index << ',' << s.c.colliding << ',' << s.pd.in_collision
         << ',' << s.pd.valid << ',' << s.pd.verified_free << ',' << s.free_beyond << ','
         << s.converged << ',' << Num(s.pd.depth) << ',' << Num(s.pd.time_us) << ','
@@ -102,7 +113,10 @@ std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std:
         << s.fcl_collide << ',' << Num(s.fcl_time_us) << ','
         << (s.has_ref ? Num(s.ref.depth) : "") << ','
         << (s.has_ref ? Num(RelativeError(s.pd.depth, s.ref.depth)) : "") << ','
-        << s.cross_checked << ',' << s.list_builds << ',' << Num(s.list_build_us) << '\n';
+        << s.cross_checked << ',' << s.list_builds << ',' << Num(s.list_build_us) << ',';
+      WriteWork(f, s.pd.work);
+      f << '\n';
+    }
   return name;
 }
 

@@ -19,6 +19,12 @@ namespace {
 
 const char* PassMiss(bool pass) { return pass ? "PASS" : "**MISS**"; }
 
+// "c / l / o / b / r" in percent, one digit.
+std::string Shares(const WorkShares& w) {
+  return Pct(w.collision, 0) + " / " + Pct(w.localisation, 0) + " / " +
+         Pct(w.out_projection, 0) + " / " + Pct(w.list_builds, 0) + " / " + Pct(w.other, 0);
+}
+
 const ScenarioResult* Find(const PairResult& p, Scenario s) {
   for (const ScenarioResult& r : p.scenarios)
     if (r.scenario == s) return &r;
@@ -183,6 +189,17 @@ void ResultsSection(const BenchRun& run, std::ostream& md) {
          << Pct(m.abs_error.max) << " | " << Pct(m.signed_mean_error) << " | " << m.n_below_ref
          << " | " << Pct(m.excess.mean) << " / " << Pct(m.excess.max) << " |\n";
     }
+  md << "\nWhere a query's work goes, per scenario: each kind of pair query's share of the "
+        "box and triangle tests (`result.work`) of the colliding cases. Cold (random) queries: "
+        "collision = the query's test, the starts' and inner probes' tests and the "
+        "verification; out-projection = the starts' landings and every iteration's CCD; "
+        "localisation = every iteration's feature pairs; other = the support-plane starts:\n\n"
+        "| Pair | Scenario | collision / localisation / out-projection / list builds / other |\n"
+        "|---|---|---|\n";
+  for (const PairResult& p : run.pairs)
+    for (const ScenarioResult& s : p.scenarios)
+      md << "| " << p.pair.name << " | " << ScenarioName(s.scenario) << " | "
+         << Shares(Summarize(s).work) << " |\n";
   md << "\n";
 }
 
@@ -335,6 +352,17 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
        << Pct(m.build_time_share, 0) << " | " << m.slowest_1pct_with_build << " of "
        << m.slowest_1pct << " |\n";
   }
+  md << "\nWhere the work goes: each kind of pair query's share of the box and triangle tests "
+        "(`result.work`) of all colliding queries and of the slowest 1% by time. Collision = "
+        "collision tests (the query's own, the cross-check's probes, the verification); "
+        "localisation = feature pairs near a configuration (step 0's free test-and-localise "
+        "included); out-projection = translational CCD; list builds = the leaf-pair lists:\n\n"
+        "| Pair | all colliding: collision / localisation / out-projection / list builds / other "
+        "| slowest 1%: collision / localisation / out-projection / list builds / other |\n"
+        "|---|---|---|\n";
+  for (size_t i = 0; i < run.haptic.size(); ++i)
+    md << "| " << run.haptic[i].spec.name << " | " << Shares(summaries[i].work) << " | "
+       << Shares(summaries[i].slowest_1pct_work) << " |\n";
   md << "\n| Target (haptic paths) | Pair | Measured | PASS/MISS |\n|---|---|---|---|\n";
   for (size_t i = 0; i < run.haptic.size(); ++i) {
     const HapticPairResult& r = run.haptic[i];

@@ -46,6 +46,20 @@ BaselineSummary SummarizeBaseline(const ScenarioResult& s, DepthOf depth_of, Tim
 
 }  // namespace
 
+WorkShares SharesOf(const std::vector<pd::PenetrationResult::Work>& works) {
+  double c = 0, l = 0, o = 0, b = 0, r = 0;
+  for (const pd::PenetrationResult::Work& w : works) {
+    c += w.collision;
+    l += w.localisation;
+    o += w.out_projection;
+    b += w.list_builds;
+    r += w.other;
+  }
+  const double all = c + l + o + b + r;
+  if (!(all > 0)) return {};
+  return {c / all, l / all, o / all, b / all, r / all};
+}
+
 double RelativeError(double depth, double ref) {
   if (!(ref > 0) || std::isnan(depth)) return kNaN;
   return (depth - ref) / ref;
@@ -54,6 +68,7 @@ double RelativeError(double depth, double ref) {
 ScenarioSummary Summarize(const ScenarioResult& s) {
   ScenarioSummary out;
   std::vector<double> starts, boxes, triangles;
+  std::vector<pd::PenetrationResult::Work> works;
   std::vector<double> times, iterations, contacts, errors, excess, ref_ms, ref_pd_us;
   int valid = 0, verified = 0, ref_free = 0;
   for (const CaseRecord& r : s.cases) {
@@ -64,6 +79,7 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
     starts.push_back(r.pd.starts);
     boxes.push_back(r.pd.box_tests);
     triangles.push_back(r.pd.triangle_tests);
+    works.push_back(r.pd.work);
     out.n_not_free_beyond += r.pd.verified_free && !r.pd.free_beyond;
     contacts.push_back(r.pd.contacts);
     valid += r.pd.valid;
@@ -89,6 +105,7 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
   out.mean_starts = Mean(starts);
   out.mean_box_tests = Mean(boxes);
   out.mean_triangle_tests = Mean(triangles);
+  out.work = SharesOf(works);
   if (out.n > 0) {
     out.valid_rate = static_cast<double>(valid) / out.n;
     out.verified_rate = static_cast<double>(verified) / out.n;

@@ -7,6 +7,14 @@
 
 namespace pd_bench {
 
+// Each kind of query's share of the work (box + triangle tests) of a set of
+// answers (PenetrationResult::work); NaN for a set without work.
+struct WorkShares {
+  double collision = kNaN, localisation = kNaN, out_projection = kNaN, list_builds = kNaN,
+         other = kNaN;
+};
+WorkShares SharesOf(const std::vector<pd::PenetrationResult::Work>& works);
+
 struct BaselineSummary {
   int n = 0;                 // cases it ran on (colliding)
   Summary time_us;
@@ -24,6 +32,7 @@ struct ScenarioSummary {
   double mean_starts = kNaN;    // cold starts out-projected per query
   // Work per query (deterministic, unlike times): box and triangle-pair tests.
   double mean_box_tests = kNaN, mean_triangle_tests = kNaN;
+  WorkShares work;              // where that work went
   int n_not_free_beyond = 0;    // verified free but not kHapticFreeMargin further out
   double valid_rate = kNaN;     // result.valid
   double verified_rate = kNaN;  // pd::InCollision at the answer is false

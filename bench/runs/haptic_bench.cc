@@ -47,6 +47,7 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       s.converged = r.converged;
       s.box_tests = static_cast<double>(r.box_tests);
       s.triangle_tests = static_cast<double>(r.triangle_tests);
+      s.pd.work = r.work;
       s.list_builds = r.list_builds;
       s.list_build_us = r.list_build_us;
       s.cold_restart = previous_seen && r.in_collision && r.warm_start_failed;
@@ -94,7 +95,8 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   HapticSummary m;
   std::vector<double> pd_us, free_us, fcl_us, iters, boxes, tris, err, signed_err;
   std::vector<double> with_build_us, without_build_us;
-  std::vector<std::pair<double, bool>> time_built;  // colliding queries: time, rebuilt
+  std::vector<const HapticStep*> by_time;  // colliding queries (sorted slowest first below)
+  std::vector<pd::PenetrationResult::Work> works;
   double build_us = 0.0;
   for (const HapticStep& s : r.steps) {
     ++m.steps;
@@ -106,7 +108,8 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
     ++m.colliding;
     pd_us.push_back(s.pd.time_us);
     (s.list_builds > 0 ? with_build_us : without_build_us).push_back(s.pd.time_us);
-    time_built.push_back({s.pd.time_us, s.list_builds > 0});
+    by_time.push_back(&s);
+    works.push_back(s.pd.work);
     build_us += s.list_build_us;
     fcl_us.push_back(s.fcl_time_us);
     iters.push_back(s.pd.iterations);
@@ -140,11 +143,18 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   const double pd_total = m.pd_us.n > 0 ? m.pd_us.mean * m.pd_us.n : 0.0;
   if (pd_total > 0.0) m.build_time_share = build_us / pd_total;
   // The slowest 1% (at least one query), slowest first.
-  std::sort(time_built.begin(), time_built.end(),
-            [](const auto& a, const auto& b) { return a.first > b.first; });
-  m.slowest_1pct = std::min<int>(static_cast<int>(time_built.size()),
-                                 std::max(1, static_cast<int>(time_built.size()) / 100));
-  for (int i = 0; i < m.slowest_1pct; ++i) m.slowest_1pct_with_build += time_built[i].second;
+  std::stable_sort(by_time.begin(), by_time.end(), [](const HapticStep* a, const HapticStep* b) {
+    return a->pd.time_us > b->pd.time_us;
+  });
+  m.slowest_1pct = std::min<int>(static_cast<int>(by_time.size()),
+                                 std::max(1, static_cast<int>(by_time.size()) / 100));
+  std::vector<pd::PenetrationResult::Work> slowest_works;
+  for (int i = 0; i < m.slowest_1pct; ++i) {
+    m.slowest_1pct_with_build += by_time[i]->list_builds > 0;
+    slowest_works.push_back(by_time[i]->pd.work);
+  }
+  m.work = SharesOf(works);
+  m.slowest_1pct_work = SharesOf(slowest_works);
   m.abs_error = Summarize(err);
   m.signed_mean_error = Mean(signed_err);
   return m;

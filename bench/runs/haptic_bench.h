@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bench/report/bench_results.h"
+#include "bench/report/summaries.h"
 #include "bench/cases/haptic_paths.h"
 #include "bench/common/stats.h"
 
@@ -26,6 +27,9 @@ struct HapticSummary {
   Summary with_build_us, without_build_us;
   double build_time_share = kNaN;
   int slowest_1pct = 0, slowest_1pct_with_build = 0;
+  // Where the work (box + triangle tests) went: over all colliding queries
+  // and over the slowest 1% of them.
+  WorkShares work, slowest_1pct_work;
   int cold_restarts = 0, cross_checks = 0, not_converged = 0, invalid = 0, not_free_beyond = 0;
   int fcl_disagree = 0;    // FCL's verdict differs from the path's
   int n_ref = 0;

@@ -17,6 +17,7 @@ PdOutcome Check(const BenchPair& pair, const Case& c, const pd::Isometry3& X_WS,
   o.starts = r.starts;
   o.box_tests = static_cast<double>(r.box_tests);
   o.triangle_tests = static_cast<double>(r.triangle_tests);
+  o.work = r.work;
   o.contacts = r.num_contacts;
   o.initializer = pd::InitializerName(r.initializer);
   o.translation_W = r.translation_W;

@@ -31,6 +31,7 @@ namespace {
 // false) at the first intersecting triangle pair.
 bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool test_intersection,
               std::vector<ContactConstraint>* out, CollisionWitness* witness) {
+  WorkScope scope(pair.counters, QueryKind::kLocalisation);
   out->clear();
   bool free = true;
   const double dist2 = distance * distance;

@@ -63,6 +63,15 @@ struct PenetrationResult {
   int pocket_escapes = 0;
   int64_t box_tests = 0;       // bounding-box tests this query made (cost counter)
   int64_t triangle_tests = 0;  // triangle-pair tests this query made
+  // Where that work (box + triangle tests) went, by kind of pair query; the
+  // five sum to box_tests + triangle_tests.
+  struct Work {
+    int64_t collision = 0;       // collision tests (the query's own, starts, probes, checks)
+    int64_t localisation = 0;    // contact localisations (feature pairs near a configuration)
+    int64_t out_projection = 0;  // translational CCD onto the contact space
+    int64_t list_builds = 0;     // leaf-pair lists near the contact (warm queries)
+    int64_t other = 0;           // the rest (cold starts' support planes, ...)
+  } work;
   // Warm queries: times this query rebuilt the list of leaf pairs near the
   // contact (the probe slid out of the last one's reach, or an iterate moved
   // millimetres away from it; at most 2) and their wall time (microseconds,

@@ -390,6 +390,13 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   auto finish = [&] {
     result.box_tests = s.counters.box_tests;
     result.triangle_tests = s.counters.triangle_tests;
+    const auto& k = s.counters.by_kind;
+    result.work.collision = k[static_cast<int>(QueryKind::kCollision)];
+    result.work.localisation = k[static_cast<int>(QueryKind::kLocalisation)];
+    result.work.out_projection = k[static_cast<int>(QueryKind::kOutProjection)];
+    result.work.list_builds = k[static_cast<int>(QueryKind::kListBuild)];
+    result.work.other = s.counters.total() - result.work.collision - result.work.localisation -
+                        result.work.out_projection - result.work.list_builds;
     result.list_builds = s.list_builds;
     result.list_build_us = s.list_build_us;
     result.time_us = std::chrono::duration<double, std::micro>(

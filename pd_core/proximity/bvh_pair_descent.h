@@ -41,10 +41,40 @@
 
 namespace pd {
 
+// The kinds of pair query a solver spends its work on.
+enum class QueryKind { kCollision, kLocalisation, kOutProjection, kListBuild };
+inline constexpr int kNumQueryKinds = 4;
+
 // Work done by proximity queries (cost accounting, benchmark reports).
 struct ProximityCounters {
   int64_t box_tests = 0;       // node-pair bounding-volume tests
   int64_t triangle_tests = 0;  // triangle-pair tests
+  // The same work (box + triangle tests) by the kind of query that did it
+  // (see WorkScope), indexed by QueryKind.
+  std::array<int64_t, kNumQueryKinds> by_kind{};
+  int open_scopes = 0;  // WorkScope nesting depth
+  int64_t total() const { return box_tests + triangle_tests; }
+};
+
+// Books the work done during its lifetime to `kind`, unless it runs inside
+// another WorkScope of the same counters (a collision test's containment
+// check belongs to the collision test).
+class WorkScope {
+ public:
+  WorkScope(ProximityCounters* counters, QueryKind kind) : counters_(counters), kind_(kind) {
+    if (counters_ && counters_->open_scopes++ == 0) start_ = counters_->total();
+  }
+  ~WorkScope() {
+    if (counters_ && --counters_->open_scopes == 0)
+      counters_->by_kind[static_cast<int>(kind_)] += counters_->total() - start_;
+  }
+  WorkScope(const WorkScope&) = delete;
+  WorkScope& operator=(const WorkScope&) = delete;
+
+ private:
+  ProximityCounters* counters_;
+  QueryKind kind_;
+  int64_t start_ = 0;
 };
 
 enum class DescentOrder { kDepthFirst, kBestFirst };

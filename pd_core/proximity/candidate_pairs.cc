@@ -21,6 +21,7 @@ constexpr double kNoEarlyExit = std::numeric_limits<double>::infinity();
 }  // namespace
 
 void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, double radius) {
+  WorkScope scope(pair.counters, QueryKind::kListBuild);
   entries_.clear();
   X_SP_ = pair.X_SP;
   q_center_S_ = q_center_S;

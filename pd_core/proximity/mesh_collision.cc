@@ -33,6 +33,7 @@ int WithNeighbours(const CollisionModel& m, int t, int out[4]) {
 }  // namespace
 
 bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, CollisionWitness* witness) {
+  WorkScope scope(pair.counters, QueryKind::kCollision);
   PlacedProbeTriangles placed(pair, offset_S);
   if (witness && witness->tp >= 0 && witness->tp < pair.P.mesh().num_triangles() &&
       witness->ts >= 0 && witness->ts < pair.S.mesh().num_triangles()) {
@@ -67,6 +68,7 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, Collision
 
 bool InCollision(const ModelPair& pair, const Vector3& offset_S, CollisionWitness* witness) {
   // No surface crossing: disjoint, or a part of one wholly inside the other.
+  WorkScope scope(pair.counters, QueryKind::kCollision);
   return SurfacesIntersect(pair, offset_S, witness) || AnyComponentInside(pair, offset_S);
 }
 

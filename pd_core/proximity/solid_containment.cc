@@ -5,6 +5,7 @@
 namespace pd {
 
 bool AnyComponentInside(const ModelPair& pair, const Vector3& offset_S) {
+  WorkScope scope(pair.counters, QueryKind::kCollision);
   if (pair.S.closed()) {
     for (int v : pair.P.component_vertices())
       if (PointInsideMesh(pair.S, pair.ProbeVertex(v, offset_S))) return true;

@@ -58,6 +58,7 @@ void TriangleFirstContact(const ModelPair& pair, PlacedProbeTriangles& placed, i
 double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset_S,
                                     const Vector3& sweep_S, double s_stop,
                                     LeafPairRecord* record, bool* record_complete) {
+  WorkScope scope(pair.counters, QueryKind::kOutProjection);
   const Bvh& bvh_P = pair.P.bvh();
   const Bvh& bvh_S = pair.S.bvh();
   if (record_complete) *record_complete = false;
