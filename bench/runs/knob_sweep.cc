@@ -47,7 +47,8 @@ std::vector<std::pair<std::string, std::string>> SweptKnobDefaults() {
           {"convergence_tol", value(Label("convergence_tol", d.convergence_tol, "%.0e"))},
           {"num_maximally_clear", value(Label("num_maximally_clear", d.num_maximally_clear))},
           {"num_iterated_starts", value(Label("num_iterated_starts", d.num_iterated_starts))},
-          {"num_random", value(Label("num_random", d.num_random))}};
+          {"num_random", value(Label("num_random", d.num_random))},
+          {"cold_join", value(Label("cold_join", d.cold_join))}};
 }
 
 std::vector<KnobConfig> SweepConfigs() {
@@ -82,6 +83,12 @@ std::vector<KnobConfig> SweepConfigs() {
     if (r == d.num_random) continue;
     KnobConfig k{Label("num_random", r), d};
     k.options.num_random = r;
+    out.push_back(k);
+  }
+  for (double j : {0.0, 1e-2, 2e-2, 5e-2}) {
+    if (j == d.cold_join) continue;
+    KnobConfig k{Label("cold_join", j), d};
+    k.options.cold_join = j;
     out.push_back(k);
   }
   out.push_back({"default", d, true, true});

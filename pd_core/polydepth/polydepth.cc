@@ -252,7 +252,19 @@ struct PolyDepthSolver::Impl {
   // Iterates localisation, in-projection and out-projection from a contact
   // configuration q_c (free, touching) until |q| stops improving.
   // A cold start passes `abandon` to stop once it cannot beat the best.
-  void Iterate(const ModelPair& pair, const PolyDepthOptions& opt, double size, Vector3 q_c,
+  // Cold: where the starts iterated so far ended, and how near (m) an
+  // iterate must come to one of them, no longer than it, to join it (0: off;
+  // PolyDepthOptions::cold_join).
+  std::vector<Vector3> start_ends;
+  double join_distance = 0.0;
+  bool JoinsAnEarlierStart(const Vector3& q_c, double norm_c) const {
+    if (join_distance <= 0.0) return false;
+    for (const Vector3& e : start_ends)
+      if (e.squaredNorm() <= norm_c * norm_c && (q_c - e).squaredNorm() < join_distance * join_distance)
+        return true;
+    return false;
+  }
+  Vector3 Iterate(const ModelPair& pair, const PolyDepthOptions& opt, double size, Vector3 q_c,
                Initializer origin, StartAbandon* abandon = nullptr) {
   Impl& s = *this;
   const double tol = opt.convergence_tol * size;
@@ -263,6 +275,7 @@ struct PolyDepthSolver::Impl {
   if (abandon) abandon->Update(norm_c);
   for (int it = 0; it < opt.max_iterations; ++it) {
     if (s.OutOfBudget()) break;
+    if (s.JoinsAnEarlierStart(q_c, norm_c)) break;
     ++s.iterations;
     if (origin == Initializer::kMotionCoherence) s.FollowWithList(pair, opt, size, q_c);
     // Localise the contact space at q_c and in-project toward the query.
@@ -293,6 +306,7 @@ struct PolyDepthSolver::Impl {
     if (!improved) break;
     if (abandon && abandon->Update(norm_c)) break;
   }
+  return q_c;
 }
 
   // The unit direction that moves the probe off every one of `cs` at once
@@ -334,6 +348,7 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
   impl_->previous_constraints.reserve(1024);
   impl_->unit_constraints.reserve(1024);
   impl_->starts.reserve(64);
+  impl_->start_ends.reserve(64);
   impl_->qp.unique.reserve(1024);
   impl_->qp.lambda.reserve(1024);
 }
@@ -661,8 +676,9 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (i > 0 && s.OutOfBudget()) break;
       // After the first, a start stops once it cannot beat the best answer.
       StartAbandon abandon(s.best_norm);
-      s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin,
-                i > 0 && options_.cold_abandon ? &abandon : nullptr);
+      s.start_ends.push_back(s.Iterate(pair, options_, size, s.starts[i].contact_q_S,
+                                       s.starts[i].origin,
+                                       i > 0 && options_.cold_abandon ? &abandon : nullptr));
     }
     // Probes from the inside: free configurations shallower than the best
     // answer, out-projected toward the query and iterated like the others.
@@ -676,8 +692,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
         if (!touched) continue;
         StartAbandon abandon(s.best_norm);
-        s.Iterate(pair, options_, size, q_c, Initializer::kMaximallyClear,
-                  options_.cold_abandon ? &abandon : nullptr);
+        s.start_ends.push_back(s.Iterate(pair, options_, size, q_c, Initializer::kMaximallyClear,
+                                         options_.cold_abandon ? &abandon : nullptr));
       }
     }
   };
@@ -707,7 +723,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       s.best_norm > kAnchorProbeGrowth * std::max(s.anchor_depth, s.anchor_probe_depth) &&
       s.best_q_S.dot(s.anchor_n_S) < kAnchorProbeCos * s.best_norm;
   if (!warm_found) {
+    s.start_ends.clear();
+    s.join_distance = options_.cold_join * size;
     cold_starts();
+    s.join_distance = 0.0;
   } else if (check || turned) {
     if (check && s.check_next < 0) {
       s.check_next = 0;
