@@ -252,17 +252,30 @@ struct PolyDepthSolver::Impl {
   // Iterates localisation, in-projection and out-projection from a contact
   // configuration q_c (free, touching) until |q| stops improving.
   // A cold start passes `abandon` to stop once it cannot beat the best.
-  // Cold: where the starts iterated so far ended, and how near (m) an
-  // iterate must come to one of them, no longer than it, to join it (0: off;
-  // PolyDepthOptions::cold_join).
-  std::vector<Vector3> start_ends;
+  // Cold: the configurations the starts iterated so far went through, each
+  // with |q| where its start ended (+inf while the start runs). An iterate
+  // within join_distance (m) of one whose start ended no deeper than the
+  // iterate joins that start's descent (PolyDepthOptions::cold_join; 0: off).
+  struct TrailPoint {
+    Vector3 q_S;
+    double end_norm;
+  };
+  std::vector<TrailPoint> trail;
+  size_t trail_start = 0;  // the running start's first point in `trail`
   double join_distance = 0.0;
   bool JoinsAnEarlierStart(const Vector3& q_c, double norm_c) const {
     if (join_distance <= 0.0) return false;
-    for (const Vector3& e : start_ends)
-      if (e.squaredNorm() <= norm_c * norm_c && (q_c - e).squaredNorm() < join_distance * join_distance)
+    for (const TrailPoint& t : trail)
+      if (t.end_norm <= norm_c && (q_c - t.q_S).squaredNorm() < join_distance * join_distance)
         return true;
     return false;
+  }
+  // The running start ended at end_S: its points join the trail.
+  void EndStart(const Vector3& end_S) {
+    if (join_distance <= 0.0) return;
+    trail.push_back({end_S, 0.0});
+    for (size_t i = trail_start; i < trail.size(); ++i) trail[i].end_norm = end_S.norm();
+    trail_start = trail.size();
   }
   Vector3 Iterate(const ModelPair& pair, const PolyDepthOptions& opt, double size, Vector3 q_c,
                Initializer origin, StartAbandon* abandon = nullptr) {
@@ -276,6 +289,7 @@ struct PolyDepthSolver::Impl {
   for (int it = 0; it < opt.max_iterations; ++it) {
     if (s.OutOfBudget()) break;
     if (s.JoinsAnEarlierStart(q_c, norm_c)) break;
+    if (s.join_distance > 0.0) s.trail.push_back({q_c, 1e300});
     ++s.iterations;
     if (origin == Initializer::kMotionCoherence) s.FollowWithList(pair, opt, size, q_c);
     // Localise the contact space at q_c and in-project toward the query.
@@ -348,7 +362,7 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
   impl_->previous_constraints.reserve(1024);
   impl_->unit_constraints.reserve(1024);
   impl_->starts.reserve(64);
-  impl_->start_ends.reserve(64);
+  impl_->trail.reserve(512);
   impl_->qp.unique.reserve(1024);
   impl_->qp.lambda.reserve(1024);
 }
@@ -676,9 +690,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (i > 0 && s.OutOfBudget()) break;
       // After the first, a start stops once it cannot beat the best answer.
       StartAbandon abandon(s.best_norm);
-      s.start_ends.push_back(s.Iterate(pair, options_, size, s.starts[i].contact_q_S,
-                                       s.starts[i].origin,
-                                       i > 0 && options_.cold_abandon ? &abandon : nullptr));
+      s.EndStart(s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin,
+                           i > 0 && options_.cold_abandon ? &abandon : nullptr));
     }
     // Probes from the inside: free configurations shallower than the best
     // answer, out-projected toward the query and iterated like the others.
@@ -692,8 +705,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
         if (!touched) continue;
         StartAbandon abandon(s.best_norm);
-        s.start_ends.push_back(s.Iterate(pair, options_, size, q_c, Initializer::kMaximallyClear,
-                                         options_.cold_abandon ? &abandon : nullptr));
+        s.EndStart(s.Iterate(pair, options_, size, q_c, Initializer::kMaximallyClear,
+                             options_.cold_abandon ? &abandon : nullptr));
       }
     }
   };
@@ -723,7 +736,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       s.best_norm > kAnchorProbeGrowth * std::max(s.anchor_depth, s.anchor_probe_depth) &&
       s.best_q_S.dot(s.anchor_n_S) < kAnchorProbeCos * s.best_norm;
   if (!warm_found) {
-    s.start_ends.clear();
+    s.trail.clear();
+    s.trail_start = 0;
     s.join_distance = options_.cold_join * size;
     cold_starts();
     s.join_distance = 0.0;

@@ -60,12 +60,14 @@ struct PolyDepthOptions {
   // pose (tests/pd_core/test_polydepth.cc, TorusKnotPair...).
   bool cold_abandon = false;
   // A cold start (or inner probe) stops iterating once its iterate comes
-  // within this distance (fraction of size) of where an earlier one ended,
-  // no shallower than that end: it is descending into the same local
-  // optimum, already found. Measured on 16 random cases of 10 real pairs:
-  // 12-27% fewer box and triangle tests at 2e-2, answers within 0.2% of
-  // those without it (most bit-identical); 5e-2 saved 9-33% but left one
-  // case 18% deeper (anchor_knot) and one 6% (homer_triceratops). 0 = off.
+  // within this distance (fraction of size) of a configuration an earlier
+  // start went through (or ended at), if that start ended no deeper than
+  // the iterate: it is descending into an optimum already found. 26% of the
+  // iterated starts ended at an earlier start's answer, with 31% of their
+  // work. On 16 random cases each of 12 real pairs at 2e-2: 4-25% fewer box
+  // and triangle tests, depths within 0.5% of those without (most
+  // bit-identical); joining ends only saved 3-20%; 5e-2 (ends only) left one
+  // case 18% deeper (anchor_knot). 0 = off.
   double cold_join = 2e-2;
   bool warm_start = true;          // honour `coherent` in Solve
   // Warm-started queries keep a list of the leaf pairs within this distance

@@ -177,11 +177,12 @@ TEST(ColdPolyDepth, RealPairIsScaleInvariant) {
   }
 }
 
-// A cold start that descends into where an earlier start ended stops there
-// (PolyDepthOptions::cold_join): less work over the starts, the same answers
-// within 1% (the joined optimum is already the best's candidate). With the
-// join off, the same poses cost more: a join that never fires fails here.
-TEST(ColdPolyDepth, StartsJoiningAnEarlierStartsEndSaveWorkNotDepth) {
+// A cold start whose iterate comes near where an earlier start went (and
+// ended no deeper) stops there (PolyDepthOptions::cold_join): less work over
+// the starts, the same answers within 1% (the joined optimum is already the
+// best's candidate). With the join off, the same poses cost more: a join
+// that never fires fails here.
+TEST(ColdPolyDepth, StartsJoiningAnEarlierStartsDescentSaveWorkNotDepth) {
   PD_REQUIRE_FILE(kMeshDir + "/elephant.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
   const Model P = CollisionModel::Build(LoadNormalised("elephant.off"));
