@@ -85,7 +85,7 @@ std::vector<KnobConfig> SweepConfigs() {
     k.options.num_random = r;
     out.push_back(k);
   }
-  for (double j : {0.0, 1e-2, 2e-2, 5e-2}) {
+  for (double j : {0.0, 1e-2, 2e-2, 5e-2}) {  // speed for accuracy (off by default)
     if (j == d.cold_join) continue;
     KnobConfig k{Label("cold_join", j), d};
     k.options.cold_join = j;

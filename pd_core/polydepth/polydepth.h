@@ -64,11 +64,15 @@ struct PolyDepthOptions {
   // start went through (or ended at), if that start ended no deeper than
   // the iterate: it is descending into an optimum already found. 26% of the
   // iterated starts ended at an earlier start's answer, with 31% of their
-  // work. On 16 random cases each of 12 real pairs at 2e-2: 4-25% fewer box
-  // and triangle tests, depths within 0.5% of those without (most
-  // bit-identical); joining ends only saved 3-20%; 5e-2 (ends only) left one
-  // case 18% deeper (anchor_knot). 0 = off.
-  double cold_join = 2e-2;
+  // work. At 2e-2 on the bench's random scenario (100 cases each of 13 real
+  // pairs): 6-23% fewer box and triangle tests, 1263 of 1300 answers within
+  // 0.1% of those without, none shallower, a few deeper (camel_cow one by
+  // 19.5%: mean error 1.88 -> 2.31%); and a start that stopped within the
+  // convergence tolerance of an optimum (a box face, 3e-6 deeper, normal
+  // 0.6 degrees off) is no longer refined by a later start landing there
+  // (tests/pd_query, coherent). A speed-for-accuracy knob, so off by
+  // default (the knob sweep gives its trade per pair). 0 = off.
+  double cold_join = 0.0;
   bool warm_start = true;          // honour `coherent` in Solve
   // Warm-started queries keep a list of the leaf pairs within this distance
   // of the previous contact and reuse it while the probe stays inside that
