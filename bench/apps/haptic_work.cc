@@ -18,6 +18,7 @@
 #include "bench/cases/scenarios.h"
 #include "bench/common/stats.h"
 #include "bench/report/bench_results.h"
+#include "bench/report/summaries.h"
 #include "pd_core/polydepth/polydepth.h"
 
 int main(int argc, char** argv) {
@@ -79,7 +80,7 @@ int main(int argc, char** argv) {
     pd::PolyDepthSolver solver(tool->model, object->model, options);
     std::vector<double> work, us;
     int builds = 0, cold = 0, index = 0;
-    pd::PenetrationResult::Work total;
+    std::vector<pd::PenetrationResult::Work> works;
     bool seen = false;
     for (const Case& c : path.cases) {
       const pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS, /*coherent=*/true);
@@ -87,11 +88,7 @@ int main(int argc, char** argv) {
         work.push_back(static_cast<double>(r.box_tests + r.triangle_tests));
         us.push_back(r.time_us);
         builds += r.list_builds;
-        total.collision += r.work.collision;
-        total.localisation += r.work.localisation;
-        total.out_projection += r.work.out_projection;
-        total.list_builds += r.work.list_builds;
-        total.other += r.work.other;
+        works.push_back(r.work);
         cold += seen && r.warm_start_failed;
       }
       seen = true;
@@ -101,15 +98,12 @@ int main(int argc, char** argv) {
             << ' ' << r.cross_checked << '\n';
       ++index;
     }
-    const double all = std::max<double>(1.0, total.collision + total.localisation +
-                                                  total.out_projection + total.list_builds +
-                                                  total.other);
+    const WorkShares shares = SharesOf(works);
     std::printf("%-18s %6zu %8.0f %8.0f %8.0f %8.1f %7.1f %8.1f %8d %6d  %.0f/%.0f/%.0f/%.0f/%.0f\n",
                 spec.name.c_str(), work.size(), Percentile(work, 50), Percentile(work, 99),
                 Max(work), Percentile(us, 50), Percentile(us, 99), Max(us), builds, cold,
-                100.0 * total.collision / all, 100.0 * total.localisation / all,
-                100.0 * total.out_projection / all, 100.0 * total.list_builds / all,
-                100.0 * total.other / all);
+                100.0 * shares.collision, 100.0 * shares.localisation,
+                100.0 * shares.out_projection, 100.0 * shares.list_builds, 100.0 * shares.other);
   }
   return 0;
 }

@@ -249,9 +249,6 @@ struct PolyDepthSolver::Impl {
     list_follows_iterates = false;
   }
 
-  // Iterates localisation, in-projection and out-projection from a contact
-  // configuration q_c (free, touching) until |q| stops improving.
-  // A cold start passes `abandon` to stop once it cannot beat the best.
   // Cold: the configurations the starts iterated so far went through, each
   // with |q| where its start ended (+inf while the start runs). An iterate
   // within join_distance (m) of one whose start ended no deeper than the
@@ -277,6 +274,10 @@ struct PolyDepthSolver::Impl {
     for (size_t i = trail_start; i < trail.size(); ++i) trail[i].end_norm = end_S.norm();
     trail_start = trail.size();
   }
+  // Iterates localisation, in-projection and out-projection from a contact
+  // configuration q_c (free, touching) until |q| stops improving.
+  // A cold start passes `abandon` to stop once it cannot beat the best.
+  // Returns where it ended (its last contact configuration).
   Vector3 Iterate(const ModelPair& pair, const PolyDepthOptions& opt, double size, Vector3 q_c,
                Initializer origin, StartAbandon* abandon = nullptr) {
   Impl& s = *this;
