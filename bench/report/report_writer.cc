@@ -356,7 +356,8 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
         "(`result.work`) of all colliding queries and of the slowest 1% by time. Collision = "
         "collision tests (the query's own, the cross-check's probes, the verification); "
         "localisation = feature pairs near a configuration (step 0's free test-and-localise "
-        "included); out-projection = translational CCD; list builds = the leaf-pair lists:\n\n"
+        "included); out-projection = translational CCD; list builds = the leaf-pair lists; "
+        "other = the PD lower bound that lets a check skip its probes (depth_lower_bound.h):\n\n"
         "| Pair | all colliding: collision / localisation / out-projection / list builds / other "
         "| slowest 1%: collision / localisation / out-projection / list builds / other |\n"
         "|---|---|---|\n";

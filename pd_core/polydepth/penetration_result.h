@@ -70,7 +70,7 @@ struct PenetrationResult {
     int64_t localisation = 0;    // contact localisations (feature pairs near a configuration)
     int64_t out_projection = 0;  // translational CCD onto the contact space
     int64_t list_builds = 0;     // leaf-pair lists near the contact (warm queries)
-    int64_t other = 0;           // the rest (cold starts' support planes, ...)
+    int64_t other = 0;  // the rest (cold starts' support planes, warm answers' PD lower bound)
   } work;
   // Warm queries: times this query rebuilt the list of leaf pairs near the
   // contact (the probe slid out of the last one's reach, or an iterate moved

@@ -10,6 +10,7 @@
 #include "pd_core/polydepth/cold_starts.h"
 #include "pd_core/polydepth/contact_constraints.h"
 #include "pd_core/polydepth/contact_regions.h"
+#include "pd_core/polydepth/depth_lower_bound.h"
 #include "pd_core/geometry/fibonacci_sphere.h"
 #include "pd_core/proximity/mesh_collision.h"
 #include "pd_core/proximity/solid_containment.h"
@@ -95,6 +96,14 @@ constexpr int kCheckIterations = 2;
 // and another each time it has grown this many times deeper since.
 constexpr double kAnchorProbeGrowth = 1.05;
 constexpr double kAnchorProbeCos = 0.985;  // 10 degrees
+// A check or turn probe is skipped while the answer is proved within this
+// fraction of the PD (depth_lower_bound.h): a vertex of its contact keeps
+// that far from the other surface. On the bench's haptic paths it proved
+// 168 of 590 attempts on cow_armadillo (~60 tests each); it skips the
+// probes, which cost ~130 tests each and almost all collide (2718 of 2739
+// on cow_armadillo): median work 639 -> 500, same answers where checks
+// found nothing shorter.
+constexpr double kProvedSlack = 0.01;
 // Directions this close to the coherent answer's are its own basin.
 constexpr double kCheckOwnBasinCos = 0.9;
 // An answer more than 120 degrees from the coherent one points back through
@@ -736,12 +745,27 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       warm_found && !check && s.anchor_depth > 0.0 &&
       s.best_norm > kAnchorProbeGrowth * std::max(s.anchor_depth, s.anchor_probe_depth) &&
       s.best_q_S.dot(s.anchor_n_S) < kAnchorProbeCos * s.best_norm;
+  // 2d. Before either: the answer's own contact may prove it within
+  // kProvedSlack of the PD (depth_lower_bound.h).
+  auto answer_proved = [&] {
+    localise_at_best();
+    return ProvesDepthAtLeast(pair, s.constraints, s.best_norm / (1.0 + kProvedSlack));
+  };
   if (!warm_found) {
     s.trail.clear();
     s.trail_start = 0;
     s.join_distance = options_.cold_join * size;
     cold_starts();
     s.join_distance = 0.0;
+  } else if ((check || turned) && answer_proved()) {
+    // Nothing shorter to find: no probes; a running check ends here and the
+    // anchor moves to the answer.
+    if (check) {
+      s.check_next = -1;
+      s.SetAnchor(s.best_q_S);
+    } else {
+      s.anchor_probe_depth = s.best_norm;
+    }
   } else if (check || turned) {
     if (check && s.check_next < 0) {
       s.check_next = 0;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "pd_core/proximity/bvh_descent.h"
 #include "pd_core/proximity/triangle_geometry.h"
 
 namespace pd {
@@ -67,18 +68,6 @@ Hit RayHitsTriangle(const Vector3& o, const Vector3& d, const Vector3& a, const 
   return Hit::kCross;
 }
 
-// Leaf slots [first, end) in bvh.order() of the subtree rooted at `node`:
-// its leftmost leaf's first slot to its rightmost leaf's end (the build lays
-// every subtree's triangles out contiguously).
-void SubtreeSlots(const Bvh& bvh, int node, int* first, int* end) {
-  const auto& nodes = bvh.nodes();
-  int left = node, right = node;
-  while (!nodes[left].is_leaf()) ++left;
-  while (!nodes[right].is_leaf()) right = nodes[right].right_or_first;
-  *first = nodes[left].right_or_first;
-  *end = nodes[right].right_or_first + nodes[right].count;
-}
-
 // Signed solid angle of triangle abc seen from the origin (Van Oosterom and
 // Strackee): positive when its normal (b - a) x (c - a) points away from the
 // origin, as an outward face does seen from inside.
@@ -113,25 +102,9 @@ RayCrossings CountRayCrossings(const CollisionModel& model, const Vector3& p_M, 
     }
     return true;
   };
-  const int capacity = std::clamp(stack_capacity, 0, kRayStackCapacity);
-  std::array<int32_t, kRayStackCapacity> stack;
-  int top = 0;
-  int node = 0;
-  for (;;) {
-    const BvhNode& n = bvh.nodes()[node];
-    if (RayHitsBox(p_M, d_M, n, tol)) {
-      if (!n.is_leaf() && top < capacity) {
-        stack[top++] = n.right_or_first;  // visit the left child next
-        ++node;
-        continue;
-      }
-      int first = n.right_or_first, end = n.right_or_first + n.count;
-      if (!n.is_leaf()) SubtreeSlots(bvh, node, &first, &end);  // stack full
-      if (!test_slots(first, end)) return result;
-    }
-    if (top == 0) break;
-    node = stack[--top];
-  }
+  DescendBvh(
+      bvh, [&](const BvhNode& n) { return RayHitsBox(p_M, d_M, n, tol); }, test_slots,
+      stack_capacity);
   return result;
 }
 

@@ -12,6 +12,7 @@
 // the exact winding number (the sum of the triangles' solid angles,
 // O(triangles): rare).
 #include "pd_core/mesh/collision_model.h"
+#include "pd_core/proximity/bvh_descent.h"
 
 namespace pd {
 
@@ -30,18 +31,13 @@ struct RayCrossings {
   int crossings = 0;  // surface crossings at s > 0 (valid when kClean)
 };
 
-// Most pending BVH nodes CountRayCrossings keeps (a balanced BVH of n
-// triangles needs about log2(n) of them).
-inline constexpr int kRayStackCapacity = 64;
-
 // Crossings of the ray p_M + s * d_M (s > 0, d_M unit, model frame) with the
-// surface. The BVH descent keeps at most stack_capacity pending nodes
-// (clamped to [0, kRayStackCapacity]); a subtree that would need more is
-// scanned triangle by triangle instead (its triangles are contiguous in
-// bvh().order()), so a BVH of any depth, balanced or not, is traversed
-// correctly with a fixed, checked stack.
+// surface. The BVH descent (bvh_descent.h) keeps at most stack_capacity
+// pending nodes (clamped to [0, kBvhStackCapacity]); a subtree that would
+// need more is scanned triangle by triangle instead, so a BVH of any depth
+// is traversed correctly with a fixed, checked stack.
 RayCrossings CountRayCrossings(const CollisionModel& model, const Vector3& p_M, const Vector3& d_M,
-                               int stack_capacity = kRayStackCapacity);
+                               int stack_capacity = kBvhStackCapacity);
 
 // Generalized winding number of the closed surface around p_M: the sum of the
 // triangles' signed solid angles over 4 pi (1 inside, 0 outside for a closed,

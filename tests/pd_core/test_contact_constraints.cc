@@ -13,26 +13,10 @@
 #include "pd_core/geometry/make_shapes.h"
 #include "pd_core/polydepth/contact_constraints.h"
 #include "pd_core/proximity/model_pair.h"
+#include "tests/pd_core/point_triangle_distance.h"
 
 namespace pd {
 namespace {
-
-// Distance from p to triangle abc, by the plane when the projection falls
-// inside, else by the three edges (written here, not taken from pd_core).
-double PointTriangleDistance(const Vector3& p, const Vector3& a, const Vector3& b,
-                             const Vector3& c) {
-  auto segment = [](const Vector3& x, const Vector3& s0, const Vector3& s1) {
-    const Vector3 d = s1 - s0;
-    const double t = std::clamp((x - s0).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    return (x - (s0 + t * d)).norm();
-  };
-  const Vector3 n = (b - a).cross(c - a).normalized();
-  const Vector3 f = p - n.dot(p - a) * n;
-  const bool inside = (b - a).cross(f - a).dot(n) >= 0 && (c - b).cross(f - b).dot(n) >= 0 &&
-                      (a - c).cross(f - c).dot(n) >= 0;
-  if (inside) return std::abs(n.dot(p - a));
-  return std::min({segment(p, a, b), segment(p, b, c), segment(p, c, a)});
-}
 
 // Closest points of segments a0a1 and b0b1 by sampling-free closed form for
 // non-parallel segments whose closest points are interior (all this test
@@ -86,7 +70,7 @@ TEST(ContactConstraints, HoldEveryFeaturePairClearlyWithinTheDistance) {
       const Vector3 &a = VS[TS[ts][0]], &b = VS[TS[ts][1]], &c = VS[TS[ts][2]];
       const Vector3 n = (b - a).cross(c - a).normalized();
       for (size_t v = 0; v < p_S.size(); ++v) {
-        if (n.dot(p_S[v] - a) <= outside || PointTriangleDistance(p_S[v], a, b, c) >= clear)
+        if (n.dot(p_S[v] - a) <= outside || test::PointTriangleDistance(p_S[v], a, b, c) >= clear)
           continue;
         ++checked_vf;
         EXPECT_TRUE(found.count({static_cast<int>(FeaturePairKind::kVertexFace), int(v), int(ts)}))
@@ -97,7 +81,7 @@ TEST(ContactConstraints, HoldEveryFeaturePairClearlyWithinTheDistance) {
       const Vector3 &a = p_S[TP[tp][0]], &b = p_S[TP[tp][1]], &c = p_S[TP[tp][2]];
       const Vector3 n = (b - a).cross(c - a).normalized();
       for (size_t v = 0; v < VS.size(); ++v) {
-        if (n.dot(VS[v] - a) <= outside || PointTriangleDistance(VS[v], a, b, c) >= clear)
+        if (n.dot(VS[v] - a) <= outside || test::PointTriangleDistance(VS[v], a, b, c) >= clear)
           continue;
         ++checked_fv;
         EXPECT_TRUE(found.count({static_cast<int>(FeaturePairKind::kFaceVertex), int(tp), int(v)}))
