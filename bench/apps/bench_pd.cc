@@ -52,7 +52,11 @@ RunSettings MakeSettings(bool quick) {
   s.sweep_cases = quick ? 8 : 60;
   s.fcl_max_contacts = 100000;
   s.haptic_steps = quick ? 1000 : 3000;
-  s.haptic_ref = quick ? 4 : 32;
+  // A path's error is set by a few poses where the followed basin lags a
+  // shallower one by some queries (cow_armadillo at 160 poses: one at 245%,
+  // mean 3.0%; its 32 even-spread poses missed it: 1.15%): 64 halves the
+  // chance of missing such a stretch at ~6 min more.
+  s.haptic_ref = quick ? 4 : 64;
   s.seed = kDefaultBenchSeed;
   return s;
 }
@@ -114,7 +118,7 @@ int main(int argc, char** argv) {
   int ref_threads = std::max(1u, std::thread::hardware_concurrency());
   app.add_flag("--quick", quick, "fewer pairs, cases and reference directions (< 2 min)");
   int haptic_ref = -1;
-  app.add_option("--haptic-ref", haptic_ref, "reference PDs per haptic path (quick 4, full 32)")
+  app.add_option("--haptic-ref", haptic_ref, "reference PDs per haptic path (quick 4, full 64)")
       ->check(CLI::Range(0, 100000));
   bool haptic_only = false;
   app.add_flag("--haptic-only", haptic_only, "run only the haptic scenario (mesh tool sliding over a mesh object)");
