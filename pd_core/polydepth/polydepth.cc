@@ -98,12 +98,16 @@ constexpr double kAnchorProbeGrowth = 1.05;
 constexpr double kAnchorProbeCos = 0.985;  // 10 degrees
 // A check or turn probe is skipped while the answer is proved within this
 // fraction of the PD (depth_lower_bound.h): a vertex of its contact keeps
-// that far from the other surface. On the bench's haptic paths it proved
-// 168 of 590 attempts on cow_armadillo (~60 tests each); it skips the
-// probes, which cost ~130 tests each and almost all collide (2718 of 2739
-// on cow_armadillo): median work 639 -> 500, accuracy unchanged on 160
-// reference poses per path.
-constexpr double kProvedSlack = 0.01;
+// that far from the other surface. At 1/kCheckRadius - 1 the proof says
+// exactly that every probe (at kCheckRadius of the answer's length) would
+// collide: the check cannot find anything, so it ends. On the bench's haptic
+// paths the probes cost ~130 tests each and almost all collided (2718 of
+// 2739 on cow_armadillo); the proof costs ~60: median work cow_armadillo
+// 639 -> 454 (500 at a 1% slack), fandisk_elephant 273 -> 250; mean error
+// on 160 reference poses per path 5.01 -> 5.07% summed over the five pairs
+// (cow 3.02 -> 3.16%, fandisk 1.07 -> 1.23%, knot1_bunny 0.48 -> 0.23%:
+// which basin a path follows moves either way).
+constexpr double kProvedSlack = 1.0 / kCheckRadius - 1.0;
 // Directions this close to the coherent answer's are its own basin.
 constexpr double kCheckOwnBasinCos = 0.9;
 // An answer more than 120 degrees from the coherent one points back through
@@ -758,8 +762,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     cold_starts();
     s.join_distance = 0.0;
   } else if ((check || turned) && answer_proved()) {
-    // Nothing more than kProvedSlack shorter to find: no probes; a running
-    // check ends here and the anchor moves to the answer.
+    // Every probe would collide: none run; a running check ends here and the
+    // anchor moves to the answer.
     if (check) {
       s.check_next = -1;
       s.SetAnchor(s.best_q_S);
