@@ -19,7 +19,7 @@ bool ProvesDepthAtLeast(const ModelPair& pair, const std::vector<ContactConstrai
       p = pair.ProbeVertex(c.feature_P, Vector3::Zero());
     } else if (c.kind == FeaturePairKind::kFaceVertex && pair.P.closed()) {
       solid = &pair.P;
-      p = pair.X_SP.R_SP.transpose() * (pair.S.mesh().vertices[c.feature_S] - pair.X_SP.p_SP);
+      p = pair.SceneVertexInP(c.feature_S, Vector3::Zero());
     } else {
       continue;
     }

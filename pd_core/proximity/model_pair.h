@@ -32,6 +32,11 @@ struct ModelPair {
   Vector3 ProbeVertex(int v, const Vector3& offset_S) const {
     return X_SP * P.mesh().vertices[v] + offset_S;
   }
+  // Scene vertex v in P's frame with the probe translated by offset_S:
+  // R_SP^T (p_S - p_SP - offset_S).
+  Vector3 SceneVertexInP(int v, const Vector3& offset_S) const {
+    return X_SP.R_SP.transpose() * (S.mesh().vertices[v] - X_SP.p_SP - offset_S);
+  }
   void ProbeTriangle(int t, const Vector3& offset_S, Vector3 out[3]) const {
     const auto& tri = P.mesh().triangles[t];
     for (int k = 0; k < 3; ++k) out[k] = ProbeVertex(tri[k], offset_S);
