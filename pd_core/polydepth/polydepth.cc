@@ -81,6 +81,17 @@ constexpr double kListMaxNeed = 2.0;
 // sweep), so the build work per millimetre slid stays the same; builds fell
 // 25-45%, p99 work did not, and fandisk's max doubled.
 constexpr double kListMaxEntries = 2000.0;
+// A list is built of twig pairs (CandidatePairs::Grain) where the list it
+// replaces held more than this many leaf pairs; a twig-pair list holds
+// about this many leaf pairs per entry (1.4-1.6 measured on the benchmark's
+// haptic paths; the reach cap above counts those). On fandisk_elephant's
+// dense patch (haptic_work): p99 work 12787 -> 9930 tests, max 29261 ->
+// 27048, median 250 -> 263; the other pairs' answers unchanged, their work
+// within 2% (knot1_bunny p99 -7%, max +4%).
+// Twig pairs everywhere made every median 15-60% dearer (a walk descends
+// each entry it cannot skip: a few box tests where a leaf pair costs one).
+constexpr double kTwigListLeafPairs = 1000.0;
+constexpr double kTwigEntryLeafPairs = 1.5;
 // A cross-check of a coherent answer probes this many directions around the
 // query, this many per query (spread over queries so no query pays for the
 // whole check), each at this fraction of the coherent answer's length; a
@@ -182,9 +193,19 @@ struct PolyDepthSolver::Impl {
   bool list_follows_iterates = false;  // this query may still move the list to an iterate
   int list_builds = 0;          // this query's list builds and their wall time (us)
   double list_build_us = 0.0;
+  // About how many leaf pairs the list holds (0 when there is none).
+  double ListLeafPairs() const {
+    if (!candidates.valid()) return 0.0;
+    return static_cast<double>(candidates.entries().size()) *
+           (candidates.grain() == CandidatePairs::Grain::kTwigPairs ? kTwigEntryLeafPairs : 1.0);
+  }
   void BuildList(const ModelPair& pair, const Vector3& q_center_S, double radius) {
     const auto t0 = std::chrono::steady_clock::now();
-    candidates.Build(pair, q_center_S, radius);
+    // Where the last list was dense, the next pairs small subtrees
+    // (CandidatePairs::Grain): a dense patch's build is the query's work.
+    candidates.Build(pair, q_center_S, radius,
+                     ListLeafPairs() > kTwigListLeafPairs ? CandidatePairs::Grain::kTwigPairs
+                                                          : CandidatePairs::Grain::kLeafPairs);
     ++list_builds;
     list_build_us +=
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -507,7 +528,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       // about kListMaxEntries entries (not below candidate_radius). Such a
       // list costs about five box tests per entry to build, and the CCD
       // counts every entry of the prefix it walks.
-      const double entries = static_cast<double>(s.candidates.entries().size());
+      const double entries = s.ListLeafPairs();
       if (entries > kListMaxEntries && s.candidates.radius() > 0.0) {
         const double capped =
             s.candidates.radius() * std::sqrt(kListMaxEntries / entries) - need;

@@ -147,7 +147,7 @@ struct Descent {
   // Best-first from `root` on a binary min-heap of the fixed array `heap`,
   // with `stack` for the depth-first fallback when the heap is full.
   template <size_t kHeap, typename Stack>
-  void BestFirst(std::array<DescentEntry, kHeap>& heap, Stack& stack, const DescentEntry& root) {
+  bool BestFirst(std::array<DescentEntry, kHeap>& heap, Stack& stack, const DescentEntry& root) {
     size_t size = 0;
     auto push = [&](const DescentEntry& x) {
       size_t i = size++;
@@ -177,19 +177,20 @@ struct Descent {
     push(root);
     while (size > 0) {
       const DescentEntry e = pop();
-      if (!alive(e.key)) return;  // monotone: every pending pair is later
+      if (!alive(e.key)) return true;  // monotone: every pending pair is later
       if (IsLeafPair(e)) {
-        if (!Leaf(e)) return;
+        if (!Leaf(e)) return false;
         continue;
       }
       if (size + 2 > kHeap) {
-        if (!DepthFirst(stack, e)) return;
+        if (!DepthFirst(stack, e)) return false;
         continue;
       }
       DescentEntry child[2];
       const int n = Expand(e, child);
       for (int c = 0; c < n; ++c) push(child[c]);
     }
+    return true;
   }
 };
 
@@ -200,24 +201,30 @@ inline constexpr int kDescentStackCapacity = 192;
 // depth-first for a popped pair's subtree (16 bytes each, on the stack).
 inline constexpr int kBestFirstHeapCapacity = 1024;
 
+// Descends from the pair of subtrees rooted at nodes root_P and root_S (by
+// default the whole hierarchies; a candidate list's entries are pairs of
+// small subtrees, see candidate_pairs.h). Returns false if the leaf action
+// stopped the descent.
 template <DescentOrder kOrder = DescentOrder::kDepthFirst, typename NodeTest, typename Alive,
           typename LeafFn>
-void DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&& alive,
-                    LeafFn&& on_leaf_pair, ProximityCounters* counters = nullptr) {
-  if (bvh_P.empty() || bvh_S.empty()) return;
+bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&& alive,
+                    LeafFn&& on_leaf_pair, ProximityCounters* counters = nullptr,
+                    int32_t root_P = 0, int32_t root_S = 0) {
+  if (bvh_P.empty() || bvh_S.empty()) return true;
   internal::Descent<std::remove_reference_t<NodeTest>, std::remove_reference_t<Alive>,
                     std::remove_reference_t<LeafFn>>
       d{bvh_P.nodes(), bvh_S.nodes(), test, alive, on_leaf_pair};
   d.tests = 1;
+  bool completed = true;
   // The root's parent key: the lowest there is.
-  internal::DescentEntry root{0, 0, -std::numeric_limits<double>::infinity()};
-  if (test(d.nodes_P[0], d.nodes_S[0], &root.key)) {
+  internal::DescentEntry root{root_P, root_S, -std::numeric_limits<double>::infinity()};
+  if (test(d.nodes_P[root_P], d.nodes_S[root_S], &root.key)) {
     auto run = [&](auto& stack) {
       if constexpr (kOrder == DescentOrder::kBestFirst) {
         std::array<internal::DescentEntry, kBestFirstHeapCapacity> heap;
-        d.BestFirst(heap, stack, root);
+        completed = d.BestFirst(heap, stack, root);
       } else {
-        d.DepthFirst(stack, root);
+        completed = d.DepthFirst(stack, root);
       }
     };
     const int needed = bvh_P.depth() + bvh_S.depth() + 1;
@@ -230,6 +237,7 @@ void DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&&
     }
   }
   if (counters) counters->box_tests += d.tests;
+  return completed;
 }
 
 // Calls fn(tp, ts) for every triangle pair of leaf nodes ip (probe) and is

@@ -20,7 +20,8 @@ constexpr double kFullTestGap = 0.25;
 constexpr double kNoEarlyExit = std::numeric_limits<double>::infinity();
 }  // namespace
 
-void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, double radius) {
+void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, double radius,
+                           Grain grain) {
   WorkScope scope(pair.counters, QueryKind::kListBuild);
   entries_.clear();
   X_SP_ = pair.X_SP;
@@ -29,41 +30,44 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
   probe_ = &pair.P;
   scene_ = &pair.S;
   valid_ = true;
+  grain_ = grain;
   ProbeBoxMemo probe_box(pair.X_SP, q_center_S);
   const auto& nodes_P = pair.P.bvh().nodes();
   const auto& nodes_S = pair.S.bvh().nodes();
   int64_t full_tests = 0;
   // The descent prunes on the six face axes only (no edge-edge axes, no
   // sphere roots): kept pairs, most of those tested, would pay for all of
-  // them. A leaf pair is tested once, at its visit: its face axes give its
-  // gap and separating direction together (testing it in the descent as well
-  // repeated the face axes on every kept leaf pair: 10-14% of a build's box
-  // tests on the benchmark's haptic paths, same lists). One nearer than
-  // kFullTestGap radii along them gets every axis.
+  // them. An entry's pair is tested once, where the descent reaches it: its
+  // face axes give its gap and separating direction together (testing it in
+  // the descent and again at its visit repeated the face axes on every kept
+  // leaf pair: 10-14% of a build's box tests on the benchmark's haptic paths,
+  // same lists). One nearer than kFullTestGap radii along them gets every
+  // axis. The descent never goes below an entry's pair.
   DescendBvhPair(
       pair.P.bvh(), pair.S.bvh(),
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        if (a.is_leaf() && b.is_leaf()) return true;  // tested at its visit
-        *key = AxisGap<BoxAxes::kFaces>(probe_box(a), b, radius);  // nearer first
-        return *key <= radius;
-      },
-      [](double) { return true; },
-      [&](int ip, int is) {
-        const ProbeBoxInS& a = probe_box(nodes_P[ip]);
+        const int32_t ip = static_cast<int32_t>(&a - nodes_P.data());
+        const int32_t is = static_cast<int32_t>(&b - nodes_S.data());
+        const bool entry = grain == Grain::kTwigPairs ? IsTwig(nodes_P, ip) && IsTwig(nodes_S, is)
+                                                     : a.is_leaf() && b.is_leaf();
+        if (!entry) {
+          *key = AxisGap<BoxAxes::kFaces>(probe_box(a), b, radius);  // nearer first
+          return *key <= radius;
+        }
+        const ProbeBoxInS& box_a = probe_box(a);
         Vector3 axis_S;
-        // Counted as the descent's test of this pair.
-        const double face_gap = AxisGap<BoxAxes::kFaces, true>(a, nodes_S[is], kNoEarlyExit, &axis_S);
-        if (face_gap > radius) return true;
+        const double face_gap = AxisGap<BoxAxes::kFaces, true>(box_a, b, kNoEarlyExit, &axis_S);
+        if (face_gap > radius) return false;
         double axis_gap = face_gap, gap = face_gap;
         if (face_gap <= kFullTestGap * radius) {
           ++full_tests;
-          axis_gap = SeparatingAxisGap(a, nodes_S[is], &axis_S, radius);
-          gap = std::max(axis_gap, SphereGap(a, nodes_S[is]));
+          axis_gap = SeparatingAxisGap(box_a, b, &axis_S, radius);
+          gap = std::max(axis_gap, SphereGap(box_a, b));
         }
         if (gap <= radius) entries_.push_back({ip, is, gap, axis_S, axis_gap});
-        return true;
+        return false;
       },
-      pair.counters);
+      [](double) { return true; }, [](int, int) { return true; }, pair.counters);
   if (pair.counters) pair.counters->box_tests += full_tests;
   std::sort(entries_.begin(), entries_.end(),
             [](const Entry& x, const Entry& y) { return x.gap < y.gap; });

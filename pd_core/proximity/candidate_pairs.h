@@ -1,5 +1,6 @@
 #pragma once
-// Verlet-style list of the BVH leaf pairs of a probe and a scene object that
+// Verlet-style list of the BVH leaf pairs (or twig pairs, see Grain) of a
+// probe and a scene object that
 // lie within a distance (the radius) of one configuration, each with a lower
 // bound on its boxes' gap there, sorted by that gap. A later configuration
 // whose probe points all moved by at most D (rotation angle times radius plus
@@ -14,6 +15,13 @@
 #include "pd_core/proximity/model_pair.h"
 
 namespace pd {
+
+// A twig: a leaf, or a node whose two children are both leaves (up to
+// 2 * Bvh::kMaxLeafTriangles triangles).
+inline bool IsTwig(const std::vector<BvhNode>& nodes, int32_t i) {
+  const BvhNode& n = nodes[i];
+  return n.is_leaf() || (nodes[i + 1].is_leaf() && nodes[n.right_or_first].is_leaf());
+}
 
 class CandidatePairs {
  public:
@@ -40,9 +48,17 @@ class CandidatePairs {
 
   CandidatePairs() { entries_.reserve(4096); }
 
-  // Collects the leaf pairs whose boxes are within `radius` (m) of each other
-  // with the probe at the pair's pose translated by q_center_S.
-  void Build(const ModelPair& pair, const Vector3& q_center_S, double radius);
+  // What an entry pairs. Leaf pairs: a walk tests each entry it cannot skip
+  // once. Twig pairs (IsTwig): a build stops a level or two higher on each
+  // side, where most of its box tests are (a leaf-pair list costs about five
+  // per entry), and holds fewer entries; a walk descends each entry's two
+  // subtrees at its own, much smaller distance (a few box tests).
+  enum class Grain { kLeafPairs, kTwigPairs };
+
+  // Collects the node pairs of the grain whose boxes are within `radius` (m)
+  // of each other with the probe at the pair's pose translated by q_center_S.
+  void Build(const ModelPair& pair, const Vector3& q_center_S, double radius,
+             Grain grain = Grain::kLeafPairs);
 
   // Upper bound on how far any probe point is from where it was at the build
   // configuration, for `pair`'s pose translated by q_S (m); +inf when the
@@ -72,6 +88,7 @@ class CandidatePairs {
 
   void Invalidate() { valid_ = false; }
   bool valid() const { return valid_; }
+  Grain grain() const { return grain_; }
   double radius() const { return radius_; }
   const std::vector<Entry>& entries() const { return entries_; }
 
@@ -79,6 +96,7 @@ class CandidatePairs {
   // Rotation part of the displacement bound (m) and the centre's motion.
   void Motion(const ModelPair& pair, double* rotation_bound, Vector3* center_shift_S) const;
   bool valid_ = false;
+  Grain grain_ = Grain::kLeafPairs;
   RelativePose X_SP_;
   Vector3 q_center_S_ = Vector3::Zero();
   double radius_ = 0.0;

@@ -50,9 +50,15 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
       for (int k = 0; k < n; ++k) {
         const CandidatePairs::Entry& e = entries[k];
         if (e.StaysApart(shift_a, shift_b, rot, distance)) continue;
-        ++tested;
-        if (!node_test(nodes_P[e.ip], nodes_S[e.is], &unused_key)) continue;
-        if (!on_leaf_pair(e.ip, e.is)) break;
+        if (nodes_P[e.ip].is_leaf() && nodes_S[e.is].is_leaf()) {
+          ++tested;
+          if (!node_test(nodes_P[e.ip], nodes_S[e.is], &unused_key)) continue;
+          if (!on_leaf_pair(e.ip, e.is)) break;
+        } else if (!DescendBvhPair(pair.P.bvh(), pair.S.bvh(), node_test,
+                                   [](double) { return true; }, on_leaf_pair, pair.counters,
+                                   e.ip, e.is)) {
+          break;
+        }
       }
       if (pair.counters) pair.counters->box_tests += tested;
       return;

@@ -106,11 +106,24 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
         // Along the entry's separating axis first (a dot product): the
         // swept probe leaf stays at least this far from the scene leaf.
         if (e.StaysApart(shift_from, shift_to, rot, 0.0)) continue;
-        ++tested;
-        if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is], sweep_S, s_best,
-                                    &lo, &hi) &&
-            !leaf_contacts(e.ip, e.is))
+        if (nodes_P[e.ip].is_leaf() && nodes_S[e.is].is_leaf()) {
+          ++tested;
+          if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is], sweep_S, s_best,
+                                      &lo, &hi) &&
+              !leaf_contacts(e.ip, e.is))
+            break;
+        } else if (!DescendBvhPair(
+                       bvh_P, bvh_S,
+                       [&](const BvhNode& a, const BvhNode& b, double* key) {
+                         if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi))
+                           return false;
+                         *key = lo;
+                         return true;
+                       },
+                       [&](double s_lo) { return s_lo <= s_best; }, leaf_contacts, pair.counters,
+                       e.ip, e.is)) {
           break;
+        }
       }
       if (pair.counters) pair.counters->box_tests += tested;
       if (hit) return s_best;

@@ -1,5 +1,5 @@
-// The leaf-pair list (pd_core/proximity/candidate_pairs.h) as the queries walk
-// it (leaf_pairs_near.h): at configurations moved and turned away from where
+// The leaf-pair and twig-pair lists (pd_core/proximity/candidate_pairs.h) as
+// the queries walk them (leaf_pairs_near.h): at configurations moved and turned away from where
 // it was built, the walk must reach every triangle pair within the query's
 // distance that a full descent reaches, although it skips the entries whose
 // stored separating axis proves them apart without a box test. And on a real
@@ -99,7 +99,10 @@ class CandidatePairsFandiskOnElephant : public ::testing::Test {
   double radius = 0.0, distance = 0.0;
 };
 
-TEST_F(CandidatePairsFandiskOnElephant, ListWalkReachesEveryTrianglePairADescentReachesAfterMotion) {
+class CandidatePairsGrain : public CandidatePairsFandiskOnElephant,
+                           public ::testing::WithParamInterface<CandidatePairs::Grain> {};
+
+TEST_P(CandidatePairsGrain, ListWalkReachesEveryTrianglePairADescentReachesAfterMotion) {
   const ModelPair built = PairAt(Vector3::Zero(), 0.0, Vector3::UnitZ());
   std::mt19937_64 rng(7);
   std::normal_distribution<double> g;
@@ -111,7 +114,7 @@ TEST_F(CandidatePairsFandiskOnElephant, ListWalkReachesEveryTrianglePairADescent
     const Vector3 q_build_S =
         3e-3 * std::uniform_real_distribution<double>(0.0, 1.0)(rng) * unit();
     CandidatePairs list;
-    list.Build(built, q_build_S, radius);
+    list.Build(built, q_build_S, radius, GetParam());
     if (list.entries().empty()) continue;
     for (int k = 0; k < 40; ++k) {
       // Moved and turned since the build: the pose's own motion and an
@@ -132,6 +135,51 @@ TEST_F(CandidatePairsFandiskOnElephant, ListWalkReachesEveryTrianglePairADescent
   // The moves stay inside the list and many of them touch the surface.
   EXPECT_GE(compared, 150);
   EXPECT_GE(nonempty, 30);
+}
+
+INSTANTIATE_TEST_SUITE_P(LeafAndTwigPairs, CandidatePairsGrain,
+                         ::testing::Values(CandidatePairs::Grain::kLeafPairs,
+                                           CandidatePairs::Grain::kTwigPairs),
+                         [](const auto& info) {
+                           return info.param == CandidatePairs::Grain::kLeafPairs ? "LeafPairs"
+                                                                                  : "TwigPairs";
+                         });
+
+// A twig-pair list pairs twigs only, stops its build above the leaves on
+// this dense patch (fewer box tests and entries than the leaf-pair list of
+// the same reach) and still holds every leaf pair of that list inside one
+// of its entries.
+TEST_F(CandidatePairsFandiskOnElephant, TwigPairListCoversTheLeafPairListWithFewerEntries) {
+  const ModelPair pair = PairAt(Vector3::Zero(), 0.0, Vector3::UnitZ());
+  ProximityCounters leaf_work, twig_work;
+  ModelPair counted = pair;
+  CandidatePairs leaf, twig;
+  counted.counters = &leaf_work;
+  leaf.Build(counted, Vector3::Zero(), radius, CandidatePairs::Grain::kLeafPairs);
+  counted.counters = &twig_work;
+  twig.Build(counted, Vector3::Zero(), radius, CandidatePairs::Grain::kTwigPairs);
+  ASSERT_GT(leaf.entries().size(), 500u);
+  EXPECT_LT(twig.entries().size(), leaf.entries().size());
+  EXPECT_LT(twig_work.box_tests, leaf_work.box_tests);
+  const auto& nodes_P = pair.P.bvh().nodes();
+  const auto& nodes_S = pair.S.bvh().nodes();
+  // The leaves under a node: its index range in depth-first storage.
+  auto subtree_end = [](const std::vector<BvhNode>& nodes, int32_t i) {
+    while (!nodes[i].is_leaf()) i = nodes[i].right_or_first;
+    return i + 1;
+  };
+  std::set<std::pair<int, int>> covered;
+  size_t above_leaves = 0;
+  for (const CandidatePairs::Entry& e : twig.entries()) {
+    ASSERT_TRUE(IsTwig(nodes_P, e.ip) && IsTwig(nodes_S, e.is));
+    above_leaves += !(nodes_P[e.ip].is_leaf() && nodes_S[e.is].is_leaf());
+    for (int ip = e.ip; ip < subtree_end(nodes_P, e.ip); ++ip)
+      for (int is = e.is; is < subtree_end(nodes_S, e.is); ++is)
+        if (nodes_P[ip].is_leaf() && nodes_S[is].is_leaf()) covered.insert({ip, is});
+  }
+  EXPECT_GT(above_leaves, twig.entries().size() / 2);
+  for (const CandidatePairs::Entry& e : leaf.entries())
+    EXPECT_TRUE(covered.count({e.ip, e.is})) << e.ip << " " << e.is;
 }
 
 TEST_F(CandidatePairsFandiskOnElephant, SeparatingAxesSpareMostBoxTestsOfAWalkAfterMotion) {

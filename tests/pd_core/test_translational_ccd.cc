@@ -234,7 +234,7 @@ TEST_F(TranslationalCcd, EarlyStopBeforeSStopReportsAContactAndIsExactAfterIt) {
 }
 
 // Short sweeps near the contact, after the probe moved and turned since a
-// leaf-pair list was built there: the CCD walks the list (skipping entries
+// list was built there (of leaf pairs or twig pairs): the CCD walks the list (skipping entries
 // their separating axis keeps apart) and finds the first contact brute force
 // over all triangle pairs finds.
 TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterMotion) {
@@ -254,7 +254,9 @@ TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterM
     const Vector3 q_c = from - (s - 1e-3) * from;
     const double radius = 0.03 * pair.size();
     CandidatePairs list;
-    list.Build(pair, q_c, radius);
+    // Both grains (candidate_pairs.h), alternating.
+    list.Build(pair, q_c, radius,
+               k % 2 ? CandidatePairs::Grain::kTwigPairs : CandidatePairs::Grain::kLeafPairs);
     // The probe moves and turns a little (its points by a few percent of
     // the radius), then sweeps from near q_c in random directions.
     Isometry3 X_WP2 = X_WP;
