@@ -199,7 +199,7 @@ inline bool NodesWithin(const ProbeBoxInS& a, const BvhNode& node_a, const BvhNo
              : BoxesWithin<BoxAxes::kFaces>(a, b, distance, gap_bound);
 }
 
-// The times s in [lo, hi] within [0, s_max] at which box A moved by
+// The times s in [lo, hi] within [s_min, s_max] at which box A moved by
 // s * sweep_S may overlap box b: the bounding spheres and, on each of the six
 // face axes, the projections must overlap at the same time (the nine
 // edge-edge axes would narrow the interval but cost more in the CCD than
@@ -208,8 +208,8 @@ inline bool NodesWithin(const ProbeBoxInS& a, const BvhNode& node_a, const BvhNo
 // tests as BoxesWithin<BoxAxes::kFaces> at each time).
 inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
                                     const Vector3& sweep_S, double s_max, double* s_lo,
-                                    double* s_hi, double grow = 0.0) {
-  double lo = 0.0, hi = s_max;
+                                    double* s_hi, double grow = 0.0, double s_min = 0.0) {
+  double lo = s_min, hi = s_max;
   {
     // Bounding spheres first: |c + s sweep| <= reach, a quadratic in s.
     const double reach = a.half_A->norm() + b.half_B.norm() + grow;

@@ -1,7 +1,8 @@
 #pragma once
 // The leaf pairs a translational CCD descent visited with its boxes grown by
 // a distance d: every leaf pair that can come within d of each other at any
-// configuration of the swept segment before the first contact. PolyDepth
+// configuration of the swept segment before the first contact (past the part
+// a candidate list showed contact-free, if it covered the start). PolyDepth
 // localises at the CCD's landing point next; with the record it walks these
 // pairs instead of descending both hierarchies again (a cold or uncovered
 // warm iteration did one full descent for each: the localisation's half of

@@ -79,6 +79,10 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   const CandidatePairs* list = pair.candidates;
   ProbeBoxMemo probe_box(pair.X_SP, offset_S);
   const double covered = list ? list->CoveredFraction(pair, offset_S, sweep_S, 0.0) : -1.0;
+  // The part of the sweep the list has shown contact-free: the descent
+  // below looks past it only (the pairs in contact at the start, which the
+  // sweep leaves, drop out once their boxes part before it).
+  double s_min = 0.0;
   if (covered > 0.0) {
     // Every pair that can touch on [0, s] is in the list's prefix for the
     // largest displacement over that part of the sweep; a first contact
@@ -132,6 +136,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
     }
     if (covered >= 1.0) return -1.0;
     s_best = 1.0;
+    s_min = covered;
   }
   // Earliest possible contact first over all pending node pairs: the first
   // contact is found expanding only pairs that may touch before it, and the
@@ -140,7 +145,8 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
     DescendBvhPair<DescentOrder::kBestFirst>(
         bvh_P, bvh_S,
         [&](const BvhNode& a, const BvhNode& b, double* key) {
-          if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi)) return false;
+          if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi, 0.0, s_min))
+            return false;
           *key = lo;
           return true;
         },
@@ -156,7 +162,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   DescendBvhPair<DescentOrder::kBestFirst>(
       bvh_P, bvh_S,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
-        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi, grow))
+        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi, grow, s_min))
           return false;
         *key = lo;
         return true;

@@ -241,7 +241,7 @@ TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterM
   const Model P = cow_, S = knot1_;
   std::mt19937_64 rng(5);
   std::normal_distribution<double> g;
-  int listed = 0, contacts = 0;
+  int listed = 0, contacts = 0, partly = 0;
   for (int k = 0; k < 4; ++k) {
     const Isometry3 X_WP = CollidingPose(P, S, rng);
     const ModelPair pair(*P, *S, X_WP, Isometry3::Identity());
@@ -268,10 +268,14 @@ TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterM
     for (int i = 0; i < 12; ++i) {
       const Vector3 start = q_c + 0.2 * radius * Vector3(g(rng), g(rng), g(rng)).normalized();
       if (InCollision(plain, start)) continue;
-      const Vector3 sweep = 0.3 * radius * Vector3(g(rng), g(rng), g(rng)).normalized() +
+      // Every third sweep is long enough to leave the list.
+      const double length = i % 3 == 2 ? 1.5 : 0.3;
+      const Vector3 sweep = length * radius * Vector3(g(rng), g(rng), g(rng)).normalized() +
                             (i % 2 ? Vector3(0.3 * radius * (q_c - start).normalized()) : Vector3::Zero());
-      if (list.CoveredFraction(moved, start, sweep, 0.0) <= 0.0) continue;
+      const double covered = list.CoveredFraction(moved, start, sweep, 0.0);
+      if (covered <= 0.0) continue;
       ++listed;
+      partly += covered < 1.0;
       const double brute = BruteForceFirstContact(plain, start, sweep);
       const double ccd = FirstContactAlongTranslation(moved, start, sweep);
       if (brute < 0) {
@@ -284,6 +288,49 @@ TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterM
   }
   EXPECT_GE(listed, 16) << contacts;  // the list, not the descent, answered these
   EXPECT_GE(contacts, 4) << listed;   // and some of them touch
+  // Some sweeps leave the list: past the part it shows contact-free the
+  // descent looks for the contact (translational_ccd.cc, s_min).
+  EXPECT_GE(partly, 4) << listed;
+}
+
+// A sweep that starts inside a list and leaves it before its first contact:
+// the list shows its first part contact-free and the descent looks past it
+// only; the contact is the one brute force finds.
+TEST_F(TranslationalCcd, FirstContactPastTheListEqualsBruteForce) {
+  const Model P = cow_, S = knot1_;
+  std::mt19937_64 rng(9);
+  int past = 0;
+  for (int k = 0; k < 4; ++k) {
+    const Isometry3 X_WP = CollidingPose(P, S, rng);
+    ModelPair pair(*P, *S, X_WP, Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    for (int i = 0; i < 2; ++i) {
+      // From a free support-plane start toward the query, with the list
+      // built around the start.
+      const Vector3 from = starts[i].q_S;
+      CandidatePairs list;
+      list.Build(pair, from, 0.03 * pair.size(),
+                 i % 2 ? CandidatePairs::Grain::kTwigPairs : CandidatePairs::Grain::kLeafPairs);
+      const double covered = list.CoveredFraction(pair, from, -from, 0.0);
+      ASSERT_GT(covered, 0.0);
+      ASSERT_LT(covered, 1.0);
+      const double brute = BruteForceFirstContact(pair, from, -from);
+      ASSERT_GT(brute, covered);
+      pair.candidates = &list;
+      EXPECT_NEAR(FirstContactAlongTranslation(pair, from, -from), brute, 1e-12)
+          << "pose " << k << " start " << i;
+      LeafPairRecord record;
+      record.distance = 1e-4 * pair.size();
+      bool complete = false;
+      EXPECT_NEAR(FirstContactAlongTranslation(pair, from, -from, -1.0, &record, &complete), brute,
+                  1e-12);
+      EXPECT_TRUE(complete);
+      pair.candidates = nullptr;
+      ++past;
+    }
+  }
+  EXPECT_EQ(past, 8);
 }
 
 TEST_F(TranslationalCcd, BestFirstDescentFindsTheSameContactWithFewerBoxTestsOnLongSweeps) {
