@@ -48,7 +48,8 @@ std::vector<std::pair<std::string, std::string>> SweptKnobDefaults() {
           {"num_maximally_clear", value(Label("num_maximally_clear", d.num_maximally_clear))},
           {"num_iterated_starts", value(Label("num_iterated_starts", d.num_iterated_starts))},
           {"num_random", value(Label("num_random", d.num_random))},
-          {"cold_join", value(Label("cold_join", d.cold_join))}};
+          {"cold_join", value(Label("cold_join", d.cold_join))},
+          {"cold_screen_tol", value(Label("cold_screen_tol", d.cold_screen_tol, "%.0e"))}};
 }
 
 std::vector<KnobConfig> SweepConfigs() {
@@ -89,6 +90,12 @@ std::vector<KnobConfig> SweepConfigs() {
     if (j == d.cold_join) continue;
     KnobConfig k{Label("cold_join", j), d};
     k.options.cold_join = j;
+    out.push_back(k);
+  }
+  for (double t : {0.0, 3e-4, 1e-3, 3e-3}) {  // speed for accuracy (off by default)
+    if (t == d.cold_screen_tol) continue;
+    KnobConfig k{Label("cold_screen_tol", t, "%.0e"), d};
+    k.options.cold_screen_tol = t;
     out.push_back(k);
   }
   out.push_back({"default", d, true, true});

@@ -720,14 +720,22 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     }
     std::sort(s.starts.begin(), s.starts.end(),
               [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });
+    // With a screening tolerance the starts iterate only until their steps
+    // gain less than it; the best of them then goes on to convergence_tol.
+    const bool screen = options_.cold_screen_tol > options_.convergence_tol;
+    PolyDepthOptions screen_options = options_;
+    if (screen) screen_options.convergence_tol = options_.cold_screen_tol;
     for (int i = 0; i < std::min<int>(num_iterated, s.starts.size()); ++i) {
       if (s.starts[i].contact_norm >= 1e300) break;
       if (i > 0 && s.OutOfBudget()) break;
       // After the first, a start stops once it cannot beat the best answer.
       StartAbandon abandon(s.best_norm);
-      s.EndStart(s.Iterate(pair, options_, size, s.starts[i].contact_q_S, s.starts[i].origin,
+      s.EndStart(s.Iterate(pair, screen_options, size, s.starts[i].contact_q_S,
+                           s.starts[i].origin,
                            i > 0 && options_.cold_abandon ? &abandon : nullptr));
     }
+    if (screen && s.best_origin != Initializer::kNone && !s.OutOfBudget())
+      s.EndStart(s.Iterate(pair, options_, size, s.best_q_S, s.best_origin));
     // Probes from the inside: free configurations shallower than the best
     // answer, out-projected toward the query and iterated like the others.
     if (options_.cold_inner_probes > 0 && s.best_origin != Initializer::kNone &&
