@@ -53,6 +53,21 @@ std::vector<Isometry3> RandomCollidingPoses(const Model& P, const Model& S, cons
   return poses;
 }
 
+// Two meshes (probe, scene; the caller requires the files) normalised, the
+// scene at the origin, and six random colliding poses of the probe.
+struct ColdPoses {
+  Model P, S;
+  Isometry3 X_WS = Isometry3::Identity();
+  std::vector<Isometry3> poses;
+};
+ColdPoses LoadColdPoses(const std::string& probe, const std::string& scene, uint64_t seed) {
+  ColdPoses c;
+  c.P = CollisionModel::Build(LoadNormalised(probe));
+  c.S = CollisionModel::Build(LoadNormalised(scene));
+  c.poses = RandomCollidingPoses(c.P, c.S, c.X_WS, 6, seed);
+  return c;
+}
+
 struct PairCase {
   const char* probe;
   const char* scene;
@@ -185,11 +200,9 @@ TEST(ColdPolyDepth, RealPairIsScaleInvariant) {
 TEST(ColdPolyDepth, StartsJoiningAnEarlierStartsDescentSaveWorkNotDepth) {
   PD_REQUIRE_FILE(kMeshDir + "/elephant.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
-  const Model P = CollisionModel::Build(LoadNormalised("elephant.off"));
-  const Model S = CollisionModel::Build(LoadNormalised("cow.off"));
-  const Isometry3 X_WS = Isometry3::Identity();
-  const std::vector<Isometry3> poses = RandomCollidingPoses(P, S, X_WS, 6, 5);
-  ASSERT_EQ(poses.size(), 6u);
+  const ColdPoses c = LoadColdPoses("elephant.off", "cow.off", 5);
+  ASSERT_EQ(c.poses.size(), 6u);
+  const auto& [P, S, X_WS, poses] = c;
   const PolyDepthOptions off;  // the default
   ASSERT_EQ(off.cold_join, 0.0);
   PolyDepthOptions on;
@@ -218,11 +231,9 @@ TEST(ColdPolyDepth, StartsJoiningAnEarlierStartsDescentSaveWorkNotDepth) {
 TEST(ColdPolyDepth, ScreenedStartsSaveWorkNotDepth) {
   PD_REQUIRE_FILE(kMeshDir + "/knot1.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
-  const Model P = CollisionModel::Build(LoadNormalised("knot1.off"));
-  const Model S = CollisionModel::Build(LoadNormalised("cow.off"));
-  const Isometry3 X_WS = Isometry3::Identity();
-  const std::vector<Isometry3> poses = RandomCollidingPoses(P, S, X_WS, 6, 8);
-  ASSERT_EQ(poses.size(), 6u);
+  const ColdPoses c = LoadColdPoses("knot1.off", "cow.off", 8);
+  ASSERT_EQ(c.poses.size(), 6u);
+  const auto& [P, S, X_WS, poses] = c;
   const PolyDepthOptions off;  // the default
   ASSERT_LE(off.cold_screen_tol, off.convergence_tol);
   PolyDepthOptions on;
