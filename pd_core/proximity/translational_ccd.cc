@@ -83,6 +83,16 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   // below looks past it only (the pairs in contact at the start, which the
   // sweep leaves, drop out once their boxes part before it).
   double s_min = 0.0;
+  double grow = 0.0;  // the boxes' growth while recording (below)
+  // The node test of every walk and descent here: the swept boxes (grown by
+  // `grow`) may meet in [s_min, s_best], from `*key` on.
+  auto may_meet = [&](const BvhNode& a, const BvhNode& b, double* key) {
+    if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi, grow, s_min))
+      return false;
+    *key = lo;
+    return true;
+  };
+  auto before_best = [&](double s_lo) { return s_lo <= s_best; };
   if (covered > 0.0) {
     // Every pair that can touch on [0, s] is in the list's prefix for the
     // largest displacement over that part of the sweep; a first contact
@@ -112,20 +122,10 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
         if (e.StaysApart(shift_from, shift_to, rot, 0.0)) continue;
         if (nodes_P[e.ip].is_leaf() && nodes_S[e.is].is_leaf()) {
           ++tested;
-          if (SweptBoxContactInterval(probe_box(nodes_P[e.ip]), nodes_S[e.is], sweep_S, s_best,
-                                      &lo, &hi) &&
-              !leaf_contacts(e.ip, e.is))
-            break;
-        } else if (!DescendBvhPair(
-                       bvh_P, bvh_S,
-                       [&](const BvhNode& a, const BvhNode& b, double* key) {
-                         if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi))
-                           return false;
-                         *key = lo;
-                         return true;
-                       },
-                       [&](double s_lo) { return s_lo <= s_best; }, leaf_contacts, pair.counters,
-                       e.ip, e.is)) {
+          double key;
+          if (may_meet(nodes_P[e.ip], nodes_S[e.is], &key) && !leaf_contacts(e.ip, e.is)) break;
+        } else if (!DescendBvhPair(bvh_P, bvh_S, may_meet, before_best, leaf_contacts,
+                                   pair.counters, e.ip, e.is)) {
           break;
         }
       }
@@ -142,15 +142,8 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   // contact is found expanding only pairs that may touch before it, and the
   // descent ends once the earliest pending pair is later than it.
   if (record == nullptr || s_stop >= 0.0) {
-    DescendBvhPair<DescentOrder::kBestFirst>(
-        bvh_P, bvh_S,
-        [&](const BvhNode& a, const BvhNode& b, double* key) {
-          if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi, 0.0, s_min))
-            return false;
-          *key = lo;
-          return true;
-        },
-        [&](double s_lo) { return s_lo <= s_best; }, leaf_contacts, pair.counters);
+    DescendBvhPair<DescentOrder::kBestFirst>(bvh_P, bvh_S, may_meet, before_best, leaf_contacts,
+                                             pair.counters);
     return hit ? s_best : -1.0;
   }
   // Recording: boxes grown by the record's distance (with a relative slack
@@ -158,16 +151,9 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   // the distance at some s before the first contact has every ancestor pair
   // keyed at or before s, so it is reached and recorded; the same
   // first contact is found (its triangle pairs are among those reached).
-  const double grow = record->distance * (1.0 + 1e-9) + 1e-12 * pair.size();
+  grow = record->distance * (1.0 + 1e-9) + 1e-12 * pair.size();
   DescendBvhPair<DescentOrder::kBestFirst>(
-      bvh_P, bvh_S,
-      [&](const BvhNode& a, const BvhNode& b, double* key) {
-        if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi, grow, s_min))
-          return false;
-        *key = lo;
-        return true;
-      },
-      [&](double s_lo) { return s_lo <= s_best; },
+      bvh_P, bvh_S, may_meet, before_best,
       [&](int ip, int is) {
         record->pairs.push_back({ip, is});
         return leaf_contacts(ip, is);
