@@ -85,7 +85,8 @@ const PairCase kPairs[] = {
 class ColdRealPairs : public ::testing::TestWithParam<PairCase> {};
 
 // Each cold answer is verified free by the reference's own collision test,
-// also 2e-6 of the pair's size further along it, and is no more than 40%
+// also 2e-6 of the pair's size further along it, touches (collides 1e-5 of
+// the size back toward the query), and is no more than 40%
 // (mean over the pair's poses 10%) above the reference PD (an upper bound
 // itself: 128 directions). Issue 13 asks for max 10%, mean 0.5%: not met
 // yet; these bounds hold what the cold starts achieve today (worst pose
@@ -113,6 +114,11 @@ TEST_P(ColdRealPairs, AnswersAreFreeAndNearTheReference) {
     const Vector3 beyond = r.translation_W * (1.0 + 2e-6 * size / r.depth);
     EXPECT_FALSE(ReferenceInCollision(P->mesh(), poses[i], true, S->mesh(), X_WS, true, beyond))
         << "pose " << i << ": not free 2e-6 of size further out";
+    // On the contact space: 1e-5 of size back toward the query collides (a
+    // free answer with a gap would be deeper than needed).
+    const Vector3 back = r.translation_W * (1.0 - 1e-5 * size / r.depth);
+    EXPECT_TRUE(ReferenceInCollision(P->mesh(), poses[i], true, S->mesh(), X_WS, true, back))
+        << "pose " << i << ": the answer does not touch";
     ReferencePdOptions ro;
     ro.num_directions = 128;
     ro.refine_iterations = 24;
