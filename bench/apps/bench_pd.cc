@@ -93,16 +93,21 @@ void PrintHeadlines(const BenchRun& run) {
 }
 
 void PrintHapticHeadlines(const std::vector<HapticPairResult>& runs) {
-  std::printf("\n%-18s %6s %5s %9s %9s %9s %9s %8s %8s %7s %6s %5s %5s %8s %8s %8s\n", "haptic pair",
-              "poses", "coll", "med_us", "p99_us", "p99.9_us", "max_us", "fcl_med", "fcl_p99",
-              "ratio", "r_p99", "cold", "inval", "boxes", "tris", "mean|e|");
+  std::printf("\n%-18s %6s %5s %9s %9s %9s %9s %8s %8s %7s %6s %5s %5s %8s %8s %8s  %s\n",
+              "haptic pair", "poses", "coll", "med_us", "p99_us", "p99.9_us", "max_us", "fcl_med",
+              "fcl_p99", "ratio", "r_p99", "cold", "inval", "boxes", "tris", "mean|e|",
+              "bounded time: max_us stopped not_free mean|e|");
   for (const HapticPairResult& r : runs) {
     const HapticSummary m = SummarizeHaptic(r);
-    std::printf("%-18s %6d %5d %9.1f %9.1f %9.1f %9.1f %8.1f %8.1f %7.2f %6.2f %5d %5d %8.0f %8.0f %7.3f%%\n",
+    std::printf("%-18s %6d %5d %9.1f %9.1f %9.1f %9.1f %8.1f %8.1f %7.2f %6.2f %5d %5d %8.0f %8.0f %7.3f%%",
                 r.spec.name.c_str(), m.steps, m.colliding, m.pd_us.median, m.pd_us.p99, m.p999_us,
                 m.pd_us.max, m.fcl_us.median, m.fcl_us.p99, m.median_ratio, m.p99_ratio,
                 m.cold_restarts, m.invalid + m.not_free_beyond, m.mean_box_tests,
                 m.mean_triangle_tests, 100 * m.abs_error.mean);
+    if (m.has_budget)
+      std::printf("  %9.1f %5d %5d %7.3f%%", m.budget_us.max, m.budget_not_converged,
+                  m.budget_not_free, 100 * m.budget_abs_error.mean);
+    std::printf("\n");
   }
 }
 
@@ -120,6 +125,10 @@ int main(int argc, char** argv) {
   int haptic_ref = -1;
   app.add_option("--haptic-ref", haptic_ref, "reference PDs per haptic path (quick 4, full 64)")
       ->check(CLI::Range(0, 100000));
+  double haptic_budget_us = 1000.0;
+  app.add_option("--haptic-budget-us", haptic_budget_us,
+                 "also solve the haptic paths with this PolyDepthOptions::max_time_us (us; 0: skip)")
+      ->check(CLI::Range(0.0, 1e7));
   bool haptic_only = false;
   app.add_flag("--haptic-only", haptic_only, "run only the haptic scenario (mesh tool sliding over a mesh object)");
   // TakeLast: run_pd_bench.sh passes --mesh-dir and the user may override it.
@@ -160,6 +169,7 @@ int main(int argc, char** argv) {
   RunSettings& st = run.settings;
   if (seed != 0) st.seed = seed;
   if (haptic_ref >= 0) st.haptic_ref = haptic_ref;
+  st.haptic_budget_us = haptic_budget_us;
   st.ref_threads = ref_threads;
   if (ref_directions > 0) st.ref_directions = ref_directions;
   if (random_cases > 0) st.random_cases = random_cases;

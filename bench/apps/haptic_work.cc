@@ -42,6 +42,8 @@ int main(int argc, char** argv) {
                  "solve each path this many more times, fresh solver each time, unreported (profiling: the solves outweigh the path set-up)");
   app.add_option("--max-work", options.max_work,
                  "PolyDepthOptions::max_work (box + triangle tests; 0 = unbounded)");
+  app.add_option("--max-time-us", options.max_time_us,
+                 "PolyDepthOptions::max_time_us (us; 0 = unbounded; makes the work load-dependent)");
   CLI11_PARSE(app, argc, argv);
 
   std::ofstream out;

@@ -111,6 +111,9 @@ struct RunSettings {
   int fcl_max_contacts = 0;
   int haptic_steps = 0;     // poses per haptic path (1 ms apart)
   int haptic_ref = 0;       // reference PDs per haptic path
+  // The haptic paths solved again with PolyDepthOptions::max_time_us at this
+  // (us; 0: not run): the geometry thread's bounded-time mode.
+  double haptic_budget_us = 0.0;
   uint64_t seed = 0;        // bench_pd's default: kDefaultBenchSeed
   std::string mesh_dir, out_dir;
   // Scenarios to run (random, path, shallow); empty = all.
@@ -136,6 +139,13 @@ struct HapticStep {
   bool fcl_collide = false;
   bool has_ref = false;
   RefOutcome ref;
+  // The same pose solved by a second warm-started solver with the time
+  // budget (RunSettings::haptic_budget_us); has_budget false when not run.
+  bool has_budget = false;
+  bool budget_in_collision = false, budget_converged = true;
+  bool budget_free = false;  // valid, verified free and free kHapticFreeMargin further out
+  double budget_depth = kNaN, budget_time_us = kNaN;
+  pd::Vector3 budget_translation_W = pd::Vector3::Zero();
 };
 
 struct HapticPairResult {

@@ -333,6 +333,25 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
        << " | " << m.invalid << " (" << m.not_free_beyond << ") | " << m.n_ref << " | "
        << Pct(m.abs_error.mean) << " / " << Pct(m.abs_error.max) << " |\n";
   }
+  if (run.settings.haptic_budget_us > 0.0) {
+    md << "\nBounded time, the geometry thread's mode: the same paths solved again by a second "
+          "warm-started solver with `PolyDepthOptions::max_time_us` = "
+       << F(run.settings.haptic_budget_us, 0)
+       << " us (the server's `geometry_budget_ms`). A query that reaches the budget answers its "
+          "best verified-free translation so far, marked not converged, and the next query goes "
+          "on from it; the time can exceed the budget by the step under way. Errors on the same "
+          "reference poses as above:\n\n"
+          "| Pair | PD median / p99 / max us | stopped by the budget | not free (+margin) | "
+          "mean / max \\|err\\| |\n|---|---|---|---|---|\n";
+    for (size_t i = 0; i < run.haptic.size(); ++i) {
+      const HapticSummary& m = summaries[i];
+      if (!m.has_budget) continue;
+      md << "| " << run.haptic[i].spec.name << " | " << F(m.budget_us.median) << " / "
+         << F(m.budget_us.p99) << " / " << F(m.budget_us.max) << " | " << m.budget_not_converged
+         << " of " << m.budget_us.n << " | " << m.budget_not_free << " | "
+         << Pct(m.budget_abs_error.mean) << " / " << Pct(m.budget_abs_error.max) << " |\n";
+    }
+  }
   md << "\nWhere the tail comes from. A warm query keeps a list of the leaf-pair boxes near the "
         "contact and reuses it while the tool stays within its reach; a query that slid out of "
         "it (or whose iterate moved millimetres away) rebuilds it, descending both hierarchies "

@@ -57,6 +57,26 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       bar.Tick();
     }
   }
+  // The same path again in bounded time (the geometry thread's mode): each
+  // query stops at the budget with its best verified-free answer so far and
+  // the next goes on from it.
+  if (st.haptic_budget_us > 0.0) {
+    Progress bar(tag + "PolyDepth (haptic, bounded time)", static_cast<int>(out.steps.size()));
+    pd::PolyDepthOptions options;
+    options.max_time_us = st.haptic_budget_us;
+    pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, options);
+    for (HapticStep& s : out.steps) {
+      const pd::PenetrationResult r = solver.Solve(s.c.X_WP, X_WS, /*coherent=*/true);
+      s.has_budget = true;
+      s.budget_in_collision = r.in_collision;
+      s.budget_converged = r.converged;
+      s.budget_free = r.valid;  // and verified below
+      s.budget_depth = r.depth;
+      s.budget_time_us = r.time_us;
+      s.budget_translation_W = r.translation_W;
+      bar.Tick();
+    }
+  }
   // Checks and FCL, outside PolyDepth's clock.
   {
     Progress bar(tag + "checks and FCL collide", static_cast<int>(out.steps.size()));
@@ -68,6 +88,12 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       const double n = q_S.norm();
       s.free_beyond = s.pd.verified_free &&
                       (n == 0 || !pd::InCollision(mp, q_S * (1.0 + kHapticFreeMargin * mp.size() / n)));
+      if (s.has_budget && s.budget_in_collision && s.budget_free) {
+        const pd::Vector3 b_S = X_WS.linear().transpose() * s.budget_translation_W;
+        const double nb = b_S.norm();
+        s.budget_free = !pd::InCollision(mp, b_S) &&
+                        (nb == 0 || !pd::InCollision(mp, b_S * (1.0 + kHapticFreeMargin * mp.size() / nb)));
+      }
       const FclAnswer a = fcl.Collide(s.c.X_WP, X_WS);
       s.fcl_time_us = a.time_us;
       s.fcl_collide = a.in_collision;
@@ -94,7 +120,7 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
 HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   HapticSummary m;
   std::vector<double> pd_us, free_us, fcl_us, iters, boxes, tris, err, signed_err;
-  std::vector<double> with_build_us, without_build_us;
+  std::vector<double> with_build_us, without_build_us, budget_us, budget_err;
   std::vector<const HapticStep*> by_time;  // colliding queries (sorted slowest first below)
   std::vector<pd::PenetrationResult::Work> works;
   double build_us = 0.0;
@@ -120,6 +146,16 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
     m.not_converged += !s.converged;
     m.invalid += !(s.pd.valid && s.pd.verified_free);
     m.not_free_beyond += !s.free_beyond;
+    if (s.has_budget && s.budget_in_collision) {
+      m.has_budget = true;
+      budget_us.push_back(s.budget_time_us);
+      m.budget_not_converged += !s.budget_converged;
+      m.budget_not_free += !s.budget_free;
+      if (s.has_ref) {
+        const double e = RelativeError(s.budget_depth, s.ref.depth);
+        if (!std::isnan(e)) budget_err.push_back(std::fabs(e));
+      }
+    }
     if (s.has_ref) {
       const double e = RelativeError(s.pd.depth, s.ref.depth);
       if (!std::isnan(e)) {
@@ -156,6 +192,8 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   m.work = SharesOf(works);
   m.slowest_1pct_work = SharesOf(slowest_works);
   m.abs_error = Summarize(err);
+  m.budget_us = Summarize(budget_us);
+  m.budget_abs_error = Summarize(budget_err);
   m.signed_mean_error = Mean(signed_err);
   return m;
 }

@@ -34,6 +34,12 @@ struct HapticSummary {
   int fcl_disagree = 0;    // FCL's verdict differs from the path's
   int n_ref = 0;
   Summary abs_error;       // |depth - ref| / ref
+  // The bounded-time pass (RunSettings::haptic_budget_us), colliding poses:
+  // time, answers stopped by the budget, answers not free (+margin), and the
+  // error on the same reference poses.
+  bool has_budget = false;
+  Summary budget_us, budget_abs_error;
+  int budget_not_converged = 0, budget_not_free = 0;
   double signed_mean_error = kNaN;
 };
 
