@@ -82,9 +82,13 @@ constexpr double kListMaxNeed = 2.0;
 // 25-45%, p99 work did not, and fandisk's max doubled.
 constexpr double kListMaxEntries = 2000.0;
 // A list is built of twig pairs (CandidatePairs::Grain) where the list it
-// replaces held more than this many leaf pairs; a twig-pair list holds
-// about this many leaf pairs per entry (1.4-1.6 measured on the benchmark's
-// haptic paths; the reach cap above counts those). On fandisk_elephant's
+// replaces held more than this many leaf pairs; the reach cap above counts a
+// twig-pair entry as this many leaf pairs. An entry holds 2.28 on average
+// (measured on the benchmark's haptic paths against leaf-pair lists of the
+// same centre and reach; 1.61 with one-level scene twigs), but counting it
+// so capped the lists that cow_armadillo's median queries walk: median work
+// 461 -> 468 (1.9) and 470 (2.3), fandisk_elephant's p99 8422 -> 8188.
+// With one-level twigs on both sides, on fandisk_elephant's
 // dense patch (haptic_work): p99 work 12787 -> 9930 tests, max 29261 ->
 // 27048, median 250 -> 263; the other pairs' answers unchanged, their work
 // within 2% (knot1_bunny p99 -7%, max +4%).

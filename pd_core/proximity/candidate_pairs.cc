@@ -48,8 +48,10 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
       [&](const BvhNode& a, const BvhNode& b, double* key) {
         const int32_t ip = static_cast<int32_t>(&a - nodes_P.data());
         const int32_t is = static_cast<int32_t>(&b - nodes_S.data());
-        const bool entry = grain == Grain::kTwigPairs ? IsTwig(nodes_P, ip) && IsTwig(nodes_S, is)
-                                                     : a.is_leaf() && b.is_leaf();
+        const bool entry = grain == Grain::kTwigPairs
+                               ? IsTwig(nodes_P, ip, kProbeTwigLevels) &&
+                                     IsTwig(nodes_S, is, kSceneTwigLevels)
+                               : a.is_leaf() && b.is_leaf();
         if (!entry) {
           *key = AxisGap<BoxAxes::kFaces>(probe_box(a), b, radius);  // nearer first
           return *key <= radius;

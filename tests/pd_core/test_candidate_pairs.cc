@@ -171,7 +171,8 @@ TEST_F(CandidatePairsFandiskOnElephant, TwigPairListCoversTheLeafPairListWithFew
   std::set<std::pair<int, int>> covered;
   size_t above_leaves = 0;
   for (const CandidatePairs::Entry& e : twig.entries()) {
-    ASSERT_TRUE(IsTwig(nodes_P, e.ip) && IsTwig(nodes_S, e.is));
+    ASSERT_TRUE(IsTwig(nodes_P, e.ip, CandidatePairs::kProbeTwigLevels) &&
+                IsTwig(nodes_S, e.is, CandidatePairs::kSceneTwigLevels));
     above_leaves += !(nodes_P[e.ip].is_leaf() && nodes_S[e.is].is_leaf());
     for (int ip = e.ip; ip < subtree_end(nodes_P, e.ip); ++ip)
       for (int is = e.is; is < subtree_end(nodes_S, e.is); ++is)
