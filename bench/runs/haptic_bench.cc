@@ -83,16 +83,18 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
     const FclBaselines fcl(pair.probe->model->mesh(), pair.scene->model->mesh(), 1);
     for (HapticStep& s : out.steps) {
       const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, s.c.X_WP, X_WS);
+      // Free kHapticFreeMargin of the pair's size further out along an
+      // answer (translation_W); the answer itself is checked by the caller.
+      auto free_beyond = [&](const pd::Vector3& q_S) {
+        const double n = q_S.norm();
+        return n == 0 || !pd::InCollision(mp, q_S * (1.0 + kHapticFreeMargin * mp.size() / n));
+      };
       const pd::Vector3 q_S = X_WS.linear().transpose() * s.pd.translation_W;
       s.pd.verified_free = !pd::InCollision(mp, q_S);
-      const double n = q_S.norm();
-      s.free_beyond = s.pd.verified_free &&
-                      (n == 0 || !pd::InCollision(mp, q_S * (1.0 + kHapticFreeMargin * mp.size() / n)));
+      s.free_beyond = s.pd.verified_free && free_beyond(q_S);
       if (s.has_budget && s.budget_in_collision && s.budget_free) {
         const pd::Vector3 b_S = X_WS.linear().transpose() * s.budget_translation_W;
-        const double nb = b_S.norm();
-        s.budget_free = !pd::InCollision(mp, b_S) &&
-                        (nb == 0 || !pd::InCollision(mp, b_S * (1.0 + kHapticFreeMargin * mp.size() / nb)));
+        s.budget_free = !pd::InCollision(mp, b_S) && free_beyond(b_S);
       }
       const FclAnswer a = fcl.Collide(s.c.X_WP, X_WS);
       s.fcl_time_us = a.time_us;

@@ -19,7 +19,7 @@ namespace pd {
 // A twig of `levels` (>= 0): a leaf, or a node whose two children are twigs
 // of levels - 1 (at most 2^levels leaves; one level: a node whose children
 // are both leaves, up to 2 * Bvh::kMaxLeafTriangles triangles).
-inline bool IsTwig(const std::vector<BvhNode>& nodes, int32_t i, int levels = 1) {
+inline bool IsTwig(const std::vector<BvhNode>& nodes, int32_t i, int levels) {
   const BvhNode& n = nodes[i];
   if (n.is_leaf()) return true;
   return levels > 0 && IsTwig(nodes, i + 1, levels - 1) &&
