@@ -455,6 +455,38 @@ TEST(ReferencePdTest, PegInUSlotLeavesThroughTheOpening) {
 // slit of 1e-6 m: slipping into the slit (5e-7 m away, or further at an angle)
 // is free only inside a slit thinner than slit_tol * size (about 3e-6 m), so
 // the plate must rise out (0.5 m). With a tiny slit_tol the slit counts.
+// A cube pushed into an inner corner of a slot (its floor and one wall):
+// it must move off both at once, so the PD lies on the crease of two
+// C-obstacle planes, t = (0, -d_wall, d_floor), where the directional exit is
+// a V-shaped valley that a pattern search along fixed axes zig-zags down.
+// The refinement's plane model lands on the crease with few directions and a
+// small budget.
+TEST(ReferencePdTest, CubeInSlotCornerRefinesOntoTheCrease) {
+  // Slot walls at |y| >= 0.5, floor z = 0, top z = 1.
+  const TriangleMesh slot = MakeUSlot(Vector3(1.0, 1.0, 1.0), 1.0, 1.0);
+  const TriangleMesh cube = MakeBox(Vector3(0.2, 0.2, 0.2));
+  const double d_floor = 0.03, d_wall = 0.05;
+  const Isometry3 X_WP = At(0, 0.5 - 0.2 + d_wall, 0.2 - d_floor), X_WS = At(0, 0, 0);
+  ReferencePdOptions options;
+  options.num_directions = 64;
+  options.refine_iterations = 24;
+  const ReferencePdResult r = ReferencePenetrationDepth(cube, X_WP, true, slot, X_WS, true,
+                                                        options);
+  ASSERT_TRUE(r.in_collision);
+  const double exact = std::hypot(d_floor, d_wall);
+  EXPECT_NEAR(r.depth, exact, 1e-9 * exact);
+  EXPECT_NEAR(r.translation_W.y(), -d_wall, 1e-9);
+  EXPECT_NEAR(r.translation_W.z(), d_floor, 1e-9);
+  // The reference's answer is free (its own test), and the crease point is
+  // the shortest: each axis alone leaves the cube in the other wall.
+  EXPECT_FALSE(ReferenceInCollision(cube, X_WP, true, slot, X_WS, true,
+                                    r.translation_W * (1.0 + 1e-9)));
+  EXPECT_TRUE(ReferenceInCollision(cube, X_WP, true, slot, X_WS, true,
+                                   Vector3(0, -d_wall * 1.01, 0)));
+  EXPECT_TRUE(ReferenceInCollision(cube, X_WP, true, slot, X_WS, true,
+                                   Vector3(0, 0, d_floor * 1.01)));
+}
+
 TEST(ReferencePdTest, SlitThinnerThanToleranceIsNoEscape) {
   const double gap = 1e-6;
   const TriangleMesh block = MakeBox(Vector3(1, 1, 1));
