@@ -21,7 +21,11 @@
 // crossed at any angle; 1 is used where n is undefined). PD is the
 // minimum of that over a Fibonacci sphere of directions, refined from the best
 // few by jumping to the contact normal at the exit (the optimum for a single
-// planar contact) and a pattern search with a shrinking step. The result is
+// planar contact) and a pattern search with a shrinking step; the contact
+// planes its exits report form a local model whose shortest point is tried
+// when no pattern move gains (an optimum where two or three contacts meet,
+// on a crease or corner of the C-obstacle, which the pattern's fixed axes
+// only zig-zag toward). The result is
 // an upper bound on the true PD: exact to rounding for convex polytopes, and
 // for non-convex pairs it converges as directions and refinement starts grow.
 // Cost: one direction is a few ms for 1k x 1k triangles.
