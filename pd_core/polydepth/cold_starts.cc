@@ -27,15 +27,18 @@ bool StartAbandon::Update(double norm) {
   return stop;
 }
 
-void InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions, int max_out,
+void InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions,
+                      std::initializer_list<double> fractions, int max_out,
                       std::vector<Vector3>* out_S) {
-  out_S->clear();
-  // Deeper fractions first: the first free ones are the most promising.
-  for (double f : {0.7, 0.9}) {
+  int found = 0;
+  for (double f : fractions) {
     for (int i = 0; i < num_directions; ++i) {
-      if (static_cast<int>(out_S->size()) >= max_out) return;
+      if (found >= max_out) return;
       const Vector3 q = f * best_norm * FibonacciDirection(i, num_directions);
-      if (!InCollision(pair, q)) out_S->push_back(q);
+      if (!InCollision(pair, q)) {
+        out_S->push_back(q);
+        ++found;
+      }
     }
   }
 }

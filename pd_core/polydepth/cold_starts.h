@@ -2,6 +2,7 @@
 // PolyDepth's cold start (no previous answer to follow): the early stop of
 // a start that cannot beat the best verified answer, and probes from the
 // inside for free configurations shallower than it.
+#include <initializer_list>
 #include <vector>
 
 #include "pd_core/proximity/model_pair.h"
@@ -27,11 +28,13 @@ class StartAbandon {
 };
 
 // Free configurations shallower than the best answer so far: the probe
-// moved by r * u for num_directions Fibonacci directions u and r = 0.9 and
-// 0.7 of best_norm (m). Out-projected toward the query, each lands on the
-// contact space below best_norm, also in a free pocket no outside start
-// reaches (e.g. interlocked rings). Returned by |q|, at most max_out.
-void InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions, int max_out,
+// moved by r * u for num_directions Fibonacci directions u and r = each of
+// `fractions` of best_norm (m), in that order. Out-projected toward the
+// query, each lands on the contact space below best_norm, also in a free
+// pocket no outside start reaches (e.g. interlocked rings). The first
+// max_out free ones are appended to *out_S.
+void InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions,
+                      std::initializer_list<double> fractions, int max_out,
                       std::vector<Vector3>* out_S);
 
 }  // namespace pd

@@ -123,6 +123,9 @@ constexpr double kAnchorProbeCos = 0.985;  // 10 degrees
 // (cow 3.02 -> 3.16%, fandisk 1.07 -> 1.23%, knot1_bunny 0.48 -> 0.23%:
 // which basin a path follows moves either way).
 constexpr double kProvedSlack = 1.0 / kCheckRadius - 1.0;
+// Directions of PolyDepthOptions::cold_deep_probes (96 against 48 or 192:
+// the same torus-knot error as 192 at three quarters of its work).
+constexpr int kDeepProbeDirections = 96;
 // Directions this close to the coherent answer's are its own basin.
 constexpr double kCheckOwnBasinCos = 0.9;
 // An answer more than 120 degrees from the coherent one points back through
@@ -772,7 +775,15 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     // answer, out-projected toward the query and iterated like the others.
     if (options_.cold_inner_probes > 0 && s.best_origin != Initializer::kNone &&
         !s.OutOfBudget()) {
-      InnerProbeStarts(pair, s.best_norm, options_.cold_inner_probes, 2, &s.inner_starts);
+      // Deeper fractions first: the first free ones are the most promising.
+      s.inner_starts.clear();
+      InnerProbeStarts(pair, s.best_norm, options_.cold_inner_probes, {0.7, 0.9}, 2,
+                       &s.inner_starts);
+      // Deeper still, on a denser set of directions, after those (which
+      // they must not displace: see cold_deep_probes).
+      if (options_.cold_deep_probes > 0)
+        InnerProbeStarts(pair, s.best_norm, kDeepProbeDirections, {0.3, 0.5},
+                         options_.cold_deep_probes, &s.inner_starts);
       for (const Vector3& q0 : s.inner_starts) {
         if (s.OutOfBudget()) break;
         bool touched = false;

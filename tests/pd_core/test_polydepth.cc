@@ -281,6 +281,42 @@ TEST(PolyDepth, TorusKnotPairMatchesReferenceWithinTolerance) {
   EXPECT_LE(sum_err / n, 0.005);
 }
 
+// Interlocked copies of one torus knot (the benchmark's torus_knot_3k pair):
+// their shallowest escapes often lie in pockets enclosed by the other knot.
+// The deep probes (PolyDepthOptions::cold_deep_probes) are iterated after
+// the default probes, so an answer can only get shorter, and on some poses
+// it gets much shorter. Both answers are verified free.
+TEST(PolyDepth, DeepProbesFindShorterEscapesOfInterlockedKnots) {
+  Model K = CollisionModel::Build(MakeTorusKnot(2, 3, 0.2, 1.0));
+  PolyDepthOptions deep_options;
+  deep_options.cold_deep_probes = 2;
+  PolyDepthSolver plain(K, K), deep(K, K, deep_options);
+  // As the benchmark's random scenario: the probe's centre at 0.1-0.8 of
+  // the knot's radius from the other's, in a random direction and rotation.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1.0, 1.0), F(0.1, 0.8);
+  std::normal_distribution<double> G;
+  int colliding = 0, much_shorter = 0;
+  for (int i = 0; i < 120; ++i) {
+    const Vector3 u = Vector3(G(rng), G(rng), G(rng)).normalized();
+    const Isometry3 X_WP = Pose(F(rng) * K->radius() * u + K->center(),
+                                Quaternion(U(rng), U(rng), U(rng), U(rng)));
+    const Isometry3 X_WS = Pose(Vector3::Zero());
+    const PenetrationResult a = plain.Solve(X_WP, X_WS);
+    if (!a.in_collision) continue;
+    ++colliding;
+    const PenetrationResult b = deep.Solve(X_WP, X_WS);
+    ASSERT_TRUE(a.valid && b.valid) << "case " << i;
+    EXPECT_TRUE(FreeAfter(K, X_WP, K, X_WS, b)) << "case " << i;
+    EXPECT_LE(b.depth, a.depth * (1.0 + 1e-12)) << "case " << i;
+    if (b.depth < 0.8 * a.depth) ++much_shorter;
+    std::printf("[ case     ] knot pose %d: depth %.6f, with deep probes %.6f\n", i, a.depth,
+                b.depth);
+  }
+  ASSERT_GE(colliding, 10);
+  EXPECT_GE(much_shorter, 2);
+}
+
 // Scaling meshes and poses together scales the answer and nothing else.
 TEST(PolyDepth, ScaleInvariance) {
   auto knot = MakeTorusKnot(2, 3, 0.15, 1.0, 64, 6);
