@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000));
   int ref_refine_iterations = 0, ref_refine_starts = 0;
   app.add_option("--ref-refine-iterations", ref_refine_iterations,
-                 "override the reference's evaluations per refinement start (quick 16, full 24)")
+                 "override the reference's evaluations per refinement start (quick 32, full 96)")
       ->check(CLI::Range(1, 100000));
   app.add_option("--ref-refine-starts", ref_refine_starts,
                  "override the reference's refinement starts (4)")

@@ -451,10 +451,6 @@ TEST(ReferencePdTest, PegInUSlotLeavesThroughTheOpening) {
   EXPECT_NEAR(along, 2.3, 1e-12);
 }
 
-// A zero-thickness plate stuck in the top of one of two boxes separated by a
-// slit of 1e-6 m: slipping into the slit (5e-7 m away, or further at an angle)
-// is free only inside a slit thinner than slit_tol * size (about 3e-6 m), so
-// the plate must rise out (0.5 m). With a tiny slit_tol the slit counts.
 // A cube pushed into an inner corner of a slot (its floor and one wall):
 // it must move off both at once, so the PD lies on the crease of two
 // C-obstacle planes, t = (0, -d_wall, d_floor), where the directional exit is
@@ -487,6 +483,10 @@ TEST(ReferencePdTest, CubeInSlotCornerRefinesOntoTheCrease) {
                                    Vector3(0, 0, d_floor * 1.01)));
 }
 
+// A zero-thickness plate stuck in the top of one of two boxes separated by a
+// slit of 1e-6 m: slipping into the slit (5e-7 m away, or further at an angle)
+// is free only inside a slit thinner than slit_tol * size (about 3e-6 m), so
+// the plate must rise out (0.5 m). With a tiny slit_tol the slit counts.
 TEST(ReferencePdTest, SlitThinnerThanToleranceIsNoEscape) {
   const double gap = 1e-6;
   const TriangleMesh block = MakeBox(Vector3(1, 1, 1));
