@@ -49,12 +49,17 @@ struct WrenchPrinter {
   int64_t session = 0;  // ours: answers rendering another sender's stream are not ours
   bool server_seen = false;
   int answers = 0;  // poses answered (the server repeats its last answer when no new pose came)
+  // Poses overtaken by a newer one before the server's tick took them: a
+  // sender that bursts (a late process catching up) gets its newest pose
+  // rendered, never a queue of old ones. Counted from gaps in pose_seq.
+  int superseded = 0;
   int64_t last_seq = -1;
   double max_force = 0;
   void OnWrench(const lcm::ReceiveBuffer*, const std::string&, const haptics_msgs::wrench_t* w) {
     server_seen = true;
     if (w->pose_session != session) return;  // not rendering our stream (yet)
-    if (w->pose_seq < 0 || w->pose_seq == last_seq) return;  // no pose yet, or a repeat
+    if (w->pose_seq < 0 || w->pose_seq <= last_seq) return;  // no pose yet, or a repeat
+    superseded += static_cast<int>(w->pose_seq - last_seq - 1);
     last_seq = w->pose_seq;
     ++answers;
     const double f = std::sqrt(w->force[0] * w->force[0] + w->force[1] * w->force[1] +
@@ -105,7 +110,7 @@ int main(int argc, char** argv) {
   }
   HandleUntil(lcm, Clock::now() + std::chrono::milliseconds(200));  // late answers
 
-  std::printf("sent %d poses, %d answered, max |force| %.3f N\n", n, printer.answers,
-              printer.max_force);
+  std::printf("sent %d poses, %d answered, %d superseded by newer poses, max |force| %.3f N\n", n,
+              printer.answers, printer.superseded, printer.max_force);
   return printer.answers > 0 ? 0 : 3;
 }
