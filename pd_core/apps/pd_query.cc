@@ -33,10 +33,13 @@ Blank lines and lines starting with # are skipped.
 Output (stdout): one JSON object per pose line, in order:
   {"collision", "valid", "depth", "translation": [x,y,z], "normal": [x,y,z],
    "iterations", "contacts", "regions": [{"point", "normal", "local_depth"}],
-   "initializer", "converged", "list_builds", "list_build_us", "time_us"}
+   "initializer", "converged", "list_builds", "list_build_us", "starts",
+   "box_tests", "triangle_tests", "time_us"}
 all vectors in W, lengths in metres; translation moves the probe out of
-collision; time_us is solver time only; converged is false when --max-work or
---max-time-us stopped the search early (the answer is still verified free);
+collision; time_us is solver time only; starts, box_tests and triangle_tests
+are the query's cold starts and work (machine-independent cost); converged
+is false when --max-work or --max-time-us stopped the search early (the
+answer is still verified free);
 list_builds counts the --coherent query's rebuilds of its list of leaf pairs
 near the contact (0 when cold), list_build_us is their share of time_us. A malformed line (wrong number of
 fields, not a number, NaN/inf, quaternion norm not within 1e-3 of 1) gives
@@ -68,6 +71,9 @@ nlohmann::ordered_json ToJson(const pd::PenetrationResult& r) {
           {"converged", r.converged},
           {"list_builds", r.list_builds},
           {"list_build_us", r.list_build_us},
+          {"starts", r.starts},
+          {"box_tests", r.box_tests},
+          {"triangle_tests", r.triangle_tests},
           {"time_us", r.time_us}};
 }
 
@@ -112,6 +118,27 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--max-time-us", options.max_time_us,
                  "bounded time: stop after this many microseconds (0: unbounded)")
+      ->check(CLI::NonNegativeNumber);
+  // The cold search's speed-for-accuracy knobs (PolyDepthOptions documents
+  // each with its measured trade; bench_pd's knob sweep measures them per pair).
+  app.add_option("--iterated-starts", options.num_iterated_starts,
+                 "cold: starts refined by iteration, closest landing first (default 4)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--inner-probes", options.cold_inner_probes,
+                 "cold: directions probed inside the best answer for shorter escapes "
+                 "(default 48; 0: off)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--deep-probes", options.cold_deep_probes,
+                 "cold: free probes deeper inside the best answer that are refined "
+                 "(interlocked models; default 0: off)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--cold-join", options.cold_join,
+                 "cold: a start stops where it comes this close (fraction of the models' "
+                 "size) to an earlier start's path (default 0: off)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--screen-tol", options.cold_screen_tol,
+                 "cold: starts stop once a step gains less than this (fraction of size), "
+                 "then the best goes on (default 0: off)")
       ->check(CLI::NonNegativeNumber);
   try {
     app.parse(argc, argv);
