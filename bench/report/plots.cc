@@ -46,7 +46,7 @@ void SweepPlot(const BenchRun& run, std::ostream& gp) {
   const int cols = n > 1 ? 2 : 1, rows = (n + cols - 1) / cols;
   const auto knobs = SweptKnobDefaults();
   const char* colour[] = {"#1f77b4", "#ff7f0e", "#9467bd", "#8c564b",
-                          "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+                          "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#aec7e8"};
   const size_t num_colours = sizeof(colour) / sizeof(colour[0]);
   gp << "set terminal pngcairo size " << 900 * cols << "," << 600 * rows
      << " font 'DejaVu Sans,10'\n"

@@ -49,7 +49,9 @@ std::vector<std::pair<std::string, std::string>> SweptKnobDefaults() {
           {"num_iterated_starts", value(Label("num_iterated_starts", d.num_iterated_starts))},
           {"num_random", value(Label("num_random", d.num_random))},
           {"cold_join", value(Label("cold_join", d.cold_join))},
-          {"cold_screen_tol", value(Label("cold_screen_tol", d.cold_screen_tol, "%.0e"))}};
+          {"cold_screen_tol", value(Label("cold_screen_tol", d.cold_screen_tol, "%.0e"))},
+          {"cold_inner_probes", value(Label("cold_inner_probes", d.cold_inner_probes))},
+          {"cold_deep_probes", value(Label("cold_deep_probes", d.cold_deep_probes))}};
 }
 
 std::vector<KnobConfig> SweepConfigs() {
@@ -96,6 +98,18 @@ std::vector<KnobConfig> SweepConfigs() {
     if (t == d.cold_screen_tol) continue;
     KnobConfig k{Label("cold_screen_tol", t, "%.0e"), d};
     k.options.cold_screen_tol = t;
+    out.push_back(k);
+  }
+  for (int n : {0, 48}) {  // what the inner probes buy
+    if (n == d.cold_inner_probes) continue;
+    KnobConfig k{Label("cold_inner_probes", n), d};
+    k.options.cold_inner_probes = n;
+    out.push_back(k);
+  }
+  for (int n : {0, 2}) {  // accuracy for speed (off by default)
+    if (n == d.cold_deep_probes) continue;
+    KnobConfig k{Label("cold_deep_probes", n), d};
+    k.options.cold_deep_probes = n;
     out.push_back(k);
   }
   out.push_back({"default", d, true, true});
