@@ -55,7 +55,14 @@ struct WrenchPrinter {
   int superseded = 0;
   int64_t last_seq = -1;
   double max_force = 0;
-  void OnWrench(const lcm::ReceiveBuffer*, const std::string&, const haptics_msgs::wrench_t* w) {
+  // A plain function with a context (subscribeFunction), not a member
+  // function: LCM 1.3.1's member-function subscriptions crash in builds with
+  // -fsanitize=vptr (the handler is called with a null subscription).
+  static void OnWrench(const lcm::ReceiveBuffer*, const std::string&,
+                       const haptics_msgs::wrench_t* w, WrenchPrinter* self) {
+    self->Print(w);
+  }
+  void Print(const haptics_msgs::wrench_t* w) {
     server_seen = true;
     if (w->pose_session != session) return;  // not rendering our stream (yet)
     if (w->pose_seq < 0 || w->pose_seq <= last_seq) return;  // no pose yet, or a repeat
@@ -83,7 +90,7 @@ int main(int argc, char** argv) {
   WrenchPrinter printer;
   // Who we are: the server renders one sender at a time (msgs/README.md).
   printer.session = haptics_msgs::NewSession();
-  lcm.subscribe("HAPTIC_WRENCH", &WrenchPrinter::OnWrench, &printer);
+  lcm.subscribeFunction("HAPTIC_WRENCH", &WrenchPrinter::OnWrench, &printer);
 
   // The server publishes at 1 kHz from its start, posed or not: wait for it.
   const auto give_up = Clock::now() + std::chrono::seconds(10);

@@ -67,6 +67,12 @@ long FaultsOnFreshThread(bool prefault) {
 }
 
 TEST(Realtime, PrefaultedThreadTakesNoPageFaultsInItsLoop) {
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer moves locals to fake stacks and serves malloc from its
+  // own allocator, both faulting in fresh pages of their own: the property
+  // measured here is the production build's (CI runs it there).
+  GTEST_SKIP() << "AddressSanitizer build: its fake stacks and allocator fault by design";
+#endif
   const long cold = FaultsOnFreshThread(false);
   const long prefaulted = FaultsOnFreshThread(true);
   // The control run faults in (nearly) every page it touches: the measure works.
