@@ -1,6 +1,7 @@
 #include "bench/runs/knob_sweep.h"
 
 #include <cstdio>
+#include <initializer_list>
 
 #include "bench/runs/pd_runner.h"
 #include "bench/runs/reference_runner.h"
@@ -58,60 +59,30 @@ std::vector<KnobConfig> SweepConfigs() {
   const pd::PolyDepthOptions d;
   std::vector<KnobConfig> out;
   out.push_back({"default", d, false, true});
-  for (int it : {1, 2, 4, 8, 40}) {
-    if (it == d.max_iterations) continue;
-    KnobConfig k{Label("max_iterations", it), d};
-    k.options.max_iterations = it;
-    out.push_back(k);
-  }
-  for (double tol : {1e-3, 1e-4, 1e-5, 1e-6}) {
-    if (tol == d.convergence_tol) continue;
-    KnobConfig k{Label("convergence_tol", tol, "%.0e"), d};
-    k.options.convergence_tol = tol;
-    out.push_back(k);
-  }
-  for (int m : {1, 3, 6, 12, 24}) {
-    if (m == d.num_maximally_clear) continue;
-    KnobConfig k{Label("num_maximally_clear", m), d};
-    k.options.num_maximally_clear = m;
-    out.push_back(k);
-  }
-  for (int m : {1, 2, 4, 8}) {
-    if (m == d.num_iterated_starts) continue;
-    KnobConfig k{Label("num_iterated_starts", m), d};
-    k.options.num_iterated_starts = m;
-    out.push_back(k);
-  }
-  for (int r : {0, 1, 2, 3, 4}) {
-    if (r == d.num_random) continue;
-    KnobConfig k{Label("num_random", r), d};
-    k.options.num_random = r;
-    out.push_back(k);
-  }
-  for (double j : {0.0, 1e-2, 2e-2, 5e-2}) {  // speed for accuracy (off by default)
-    if (j == d.cold_join) continue;
-    KnobConfig k{Label("cold_join", j), d};
-    k.options.cold_join = j;
-    out.push_back(k);
-  }
-  for (double t : {0.0, 3e-4, 1e-3, 3e-3}) {  // speed for accuracy (off by default)
-    if (t == d.cold_screen_tol) continue;
-    KnobConfig k{Label("cold_screen_tol", t, "%.0e"), d};
-    k.options.cold_screen_tol = t;
-    out.push_back(k);
-  }
-  for (int n : {0, 48}) {  // what the inner probes buy
-    if (n == d.cold_inner_probes) continue;
-    KnobConfig k{Label("cold_inner_probes", n), d};
-    k.options.cold_inner_probes = n;
-    out.push_back(k);
-  }
-  for (int n : {0, 2}) {  // accuracy for speed (off by default)
-    if (n == d.cold_deep_probes) continue;
-    KnobConfig k{Label("cold_deep_probes", n), d};
-    k.options.cold_deep_probes = n;
-    out.push_back(k);
-  }
+  // One knob varied over `values` (its default left out: the default row
+  // stands for it), on the random scenario.
+  auto sweep = [&](const char* knob, auto field, auto values, const char* format = "%g") {
+    for (auto v : values) {
+      if (v == d.*field) continue;
+      KnobConfig k{Label(knob, v, format), d};
+      k.options.*field = v;
+      out.push_back(k);
+    }
+  };
+  using O = pd::PolyDepthOptions;
+  using Ints = std::initializer_list<int>;
+  using Doubles = std::initializer_list<double>;
+  sweep("max_iterations", &O::max_iterations, Ints{1, 2, 4, 8, 40});
+  sweep("convergence_tol", &O::convergence_tol, Doubles{1e-3, 1e-4, 1e-5, 1e-6}, "%.0e");
+  sweep("num_maximally_clear", &O::num_maximally_clear, Ints{1, 3, 6, 12, 24});
+  sweep("num_iterated_starts", &O::num_iterated_starts, Ints{1, 2, 4, 8});
+  sweep("num_random", &O::num_random, Ints{0, 1, 2, 3, 4});
+  // Speed for accuracy (off by default).
+  sweep("cold_join", &O::cold_join, Doubles{0.0, 1e-2, 2e-2, 5e-2});
+  sweep("cold_screen_tol", &O::cold_screen_tol, Doubles{0.0, 3e-4, 1e-3, 3e-3}, "%.0e");
+  sweep("cold_inner_probes", &O::cold_inner_probes, Ints{0, 48});  // what the inner probes buy
+  // Accuracy for speed (off by default).
+  sweep("cold_deep_probes", &O::cold_deep_probes, Ints{0, 2});
   out.push_back({"default", d, true, true});
   KnobConfig cold{"warm_start=off", d, true};
   cold.options.warm_start = false;
