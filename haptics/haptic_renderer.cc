@@ -7,9 +7,14 @@ namespace {
 
 // Off the tick (geometry thread on or auto), a query that takes long stops
 // at its budget with its best verified answer; the next one goes on from it.
+// There, too, a query answers before it rebuilds its candidate list: the
+// geometry thread rebuilds it after publishing the answer, until the next
+// pose is posted (GeometryWorker::RunOnce).
 pd::PolyDepthOptions GeometryOptions(const ContactConfig& contact, pd::PolyDepthOptions options) {
-  if (contact.geometry_thread != GeometryThreadMode::kOff && options.max_time_us <= 0.0)
-    options.max_time_us = contact.geometry_budget_s * 1e6;
+  if (contact.geometry_thread != GeometryThreadMode::kOff) {
+    if (options.max_time_us <= 0.0) options.max_time_us = contact.geometry_budget_s * 1e6;
+    options.defer_list_builds = true;
+  }
   return options;
 }
 
@@ -67,6 +72,7 @@ const ContactSummary& HapticRenderer::ContactAt(const RigidState& tool, int32_t*
     ++async_ticks_;
   } else {
     geometry_.Query(tool.X_W, tick, &sync_answer_);
+    geometry_.PrepareNext();  // in the tick, what the thread would do after it
     answer = &sync_answer_;
     in_line = true;
     if (worker_running_ && mode_ == GeometryThreadMode::kAuto && sync_answer_.query_us > sync_budget_us_) {

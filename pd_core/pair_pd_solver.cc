@@ -102,6 +102,10 @@ PenetrationResult PairPdSolver::Solve(const Isometry3& X_WP, const Isometry3& X_
   return r;
 }
 
+bool PairPdSolver::PrepareNext(const std::function<bool()>& pause) {
+  return impl_->polydepth ? impl_->polydepth->PrepareNext(pause).done : true;
+}
+
 void PairPdSolver::ResetWarmStart() {
   if (impl_->polydepth) impl_->polydepth->ResetWarmStart();
   impl_->previous_n_W = Vector3::Zero();

@@ -31,6 +31,7 @@
 // certificate (closed form and GJK/EPA: a separating plane at the answer).
 // `iterations` counts GJK + EPA iterations. Touching (zero depth) counts as
 // free for the closed forms and GJK/EPA.
+#include <functional>
 #include <memory>
 
 #include "pd_core/geometry/geometry.h"
@@ -63,10 +64,16 @@ class PairPdSolver {
   // true the previous answer of this pair warm-starts the search.
   PenetrationResult Solve(const Isometry3& X_WP, const Isometry3& X_WS, bool coherent = false);
 
+  // PolyDepth's deferred work (PolyDepthOptions::defer_list_builds,
+  // PolyDepthSolver::PrepareNext): true once none is left (at once for the
+  // other methods, which defer nothing).
+  bool PrepareNext(const std::function<bool()>& pause = {});
+
   // Forgets the previous answer (e.g. after a jump of the probe).
   void ResetWarmStart();
 
   PdMethod method() const { return method_; }
+  const PolyDepthOptions& options() const { return options_; }
   const Geometry& probe() const { return *probe_; }
   const Geometry& scene() const { return *scene_; }
   // Queries where EPA hit its iteration cap and the answer came from the

@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
                  "PolyDepthOptions::max_work (box + triangle tests; 0 = unbounded)");
   app.add_option("--max-time-us", options.max_time_us,
                  "PolyDepthOptions::max_time_us (us; 0 = unbounded; makes the work load-dependent)");
+  app.add_flag("--defer", options.defer_list_builds,
+               "PolyDepthOptions::defer_list_builds: list builds run in PrepareNext after each answer (to the end); their work is reported apart");
   CLI11_PARSE(app, argc, argv);
 
   std::ofstream out;
@@ -74,18 +76,24 @@ int main(int argc, char** argv) {
     double repeat_us = 0.0;
     for (int k = 0; k < repeat; ++k) {
       pd::PolyDepthSolver again(tool->model, object->model, options);
-      for (const Case& c : path.cases) repeat_us += again.Solve(c.X_WP, X_WS, /*coherent=*/true).time_us;
+      for (const Case& c : path.cases) {
+        repeat_us += again.Solve(c.X_WP, X_WS, /*coherent=*/true).time_us;
+        repeat_us += again.PrepareNext().time_us;
+      }
     }
     if (repeat > 0)
       std::fprintf(stderr, "%s: %d repeats, PolyDepth %.3f s\n", spec.name.c_str(), repeat,
                    repeat_us * 1e-6);
     pd::PolyDepthSolver solver(tool->model, object->model, options);
-    std::vector<double> work, us;
+    std::vector<double> work, us, deferred;
     int builds = 0, cold = 0, index = 0;
     std::vector<pd::PenetrationResult::Work> works;
     bool seen = false;
     for (const Case& c : path.cases) {
       const pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS, /*coherent=*/true);
+      const pd::PolyDepthSolver::Preparation prep = solver.PrepareNext();
+      if (prep.lists_completed > 0) deferred.push_back(static_cast<double>(prep.box_tests));
+      builds += prep.lists_completed;
       if (r.in_collision) {
         work.push_back(static_cast<double>(r.box_tests + r.triangle_tests));
         us.push_back(r.time_us);
@@ -103,6 +111,10 @@ int main(int argc, char** argv) {
       ++index;
     }
     const WorkShares shares = SharesOf(works);
+    if (!deferred.empty())
+      std::fprintf(stderr, "%s: %zu deferred list builds (PrepareNext), work p50 %.0f p99 %.0f max %.0f\n",
+                   spec.name.c_str(), deferred.size(), Percentile(deferred, 50),
+                   Percentile(deferred, 99), Max(deferred));
     std::printf("%-18s %6zu %8.0f %8.0f %8.0f %8.1f %7.1f %8.1f %8d %6d  %.0f/%.0f/%.0f/%.0f/%.0f\n",
                 spec.name.c_str(), work.size(), Percentile(work, 50), Percentile(work, 99),
                 Max(work), Percentile(us, 50), Percentile(us, 99), Max(us), builds, cold,

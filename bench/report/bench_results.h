@@ -133,8 +133,20 @@ struct HapticStep {
   bool cold_restart = false;  // colliding, not the first pose, warm start failed
   bool cross_checked = false; // the deep coherent answer was checked against cold starts
   double box_tests = 0, triangle_tests = 0;
-  int list_builds = 0;         // result.list_builds: leaf-pair list rebuilds
-  double list_build_us = 0.0;  // their wall time, part of pd.time_us
+  // The answers come from a solver that defers its list rebuilds
+  // (PolyDepthOptions::defer_list_builds) to PrepareNext, run after each
+  // answer until the next pose is due (the server's geometry thread):
+  // what that call did.
+  double prepare_us = 0.0;       // its wall time
+  double prepare_box_tests = 0;  // its work
+  int lists_completed = 0;       // rebuilds it completed (now in use)
+  bool prepare_paused = false;   // stopped by the next pose, goes on after it
+  // The same pose solved by a second warm-started solver that rebuilds its
+  // lists inside the query (defer_list_builds off): the comparison.
+  double inquery_time_us = kNaN;
+  bool inquery_in_collision = false;
+  int list_builds = 0;         // its result.list_builds: leaf-pair list rebuilds
+  double list_build_us = 0.0;  // their wall time, part of inquery_time_us
   double fcl_time_us = kNaN;
   bool fcl_collide = false;
   bool has_ref = false;

@@ -102,7 +102,9 @@ std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std:
   f << "pair,index,colliding,pd_in_collision,pd_valid,pd_verified_free,pd_free_beyond,"
        "pd_converged,pd_depth_m,pd_time_us,pd_iterations,pd_contacts,pd_initializer,"
        "pd_box_tests,pd_triangle_tests,cold_restart,fcl_collide,fcl_time_us,ref_depth_m,"
-       "pd_rel_error,cross_checked,pd_list_builds,pd_list_build_us," << kWorkColumns
+       "pd_rel_error,cross_checked,prepare_us,prepare_box_tests,prepare_lists_completed,"
+       "prepare_paused,inquery_in_collision,inquery_time_us,inquery_list_builds,"
+       "inquery_list_build_us," << kWorkColumns
     << ",budget_converged,budget_free_beyond,budget_depth_m,budget_time_us,budget_rel_error\n";
   for (const HapticPairResult& r : runs)
     for (const HapticStep& s : r.steps) {
@@ -114,7 +116,9 @@ std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std:
         << s.fcl_collide << ',' << Num(s.fcl_time_us) << ','
         << (s.has_ref ? Num(s.ref.depth) : "") << ','
         << (s.has_ref ? Num(RelativeError(s.pd.depth, s.ref.depth)) : "") << ','
-        << s.cross_checked << ',' << s.list_builds << ',' << Num(s.list_build_us) << ',';
+        << s.cross_checked << ',' << Num(s.prepare_us) << ',' << Num(s.prepare_box_tests) << ','
+        << s.lists_completed << ',' << s.prepare_paused << ',' << s.inquery_in_collision << ','
+        << Num(s.inquery_time_us) << ',' << s.list_builds << ',' << Num(s.list_build_us) << ',';
       WriteWork(f, s.pd.work);
       if (s.has_budget)
         f << ',' << s.budget_converged << ',' << s.budget_free << ',' << Num(s.budget_depth) << ','

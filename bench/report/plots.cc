@@ -138,26 +138,30 @@ void TimePlot(const BenchRun& run, std::ostream& gp) {
   gp << "unset multiplot\n";
 }
 
-// Empirical CDF of warm-query time on each haptic path, PolyDepth (solid)
-// against FCL's boolean collide at the same poses (dashed).
+// Empirical CDF of warm-query time on each haptic path, PolyDepth's answers
+// (solid; list rebuilds deferred) against FCL's boolean collide at the same
+// poses (dashed) and PolyDepth with the rebuilds in the queries (dotted).
 void HapticPlot(const BenchRun& run, std::ostream& gp) {
   gp << "reset\nset terminal pngcairo size 1200,700 font 'DejaVu Sans,10'\n"
      << "set output 'pd_haptic_time.png'\n"
-     << "set title 'Haptic paths: warm PolyDepth (solid) vs FCL boolean collide (dashed), "
-        "colliding poses'\n"
+     << "set title 'Haptic paths: warm PolyDepth answers (solid; dotted: list rebuilds in the "
+        "query) vs FCL boolean collide (dashed), colliding poses'\n"
      << "set logscale x\nset grid\nset key bottom right noenhanced\n"
      << "set xlabel 'time per query (us, log)'\nset ylabel 'fraction of queries'\n"
      << "set yrange [0:1]\n";
   std::vector<std::string> plots;
   int color = 1;
   for (const HapticPairResult& r : run.haptic) {
-    std::vector<double> pd_t, fcl_t;
-    for (const HapticStep& s : r.steps)
+    std::vector<double> pd_t, fcl_t, inquery_t;
+    for (const HapticStep& s : r.steps) {
       if (s.pd.in_collision) pd_t.push_back(s.pd.time_us), fcl_t.push_back(s.fcl_time_us);
+      if (s.inquery_in_collision) inquery_t.push_back(s.inquery_time_us);
+    }
     if (pd_t.empty()) continue;
-    for (auto* t : {&pd_t, &fcl_t}) {
+    for (auto* t : {&pd_t, &fcl_t, &inquery_t}) {
       std::sort(t->begin(), t->end());
-      const std::string data = std::string("$h_") + (t == &pd_t ? "pd_" : "fcl_") + r.spec.name;
+      const std::string data = std::string("$h_") +
+                               (t == &pd_t ? "pd_" : t == &fcl_t ? "fcl_" : "inq_") + r.spec.name;
       gp << data << " << EOD\n";
       for (size_t i = 0; i < t->size(); ++i) gp << (*t)[i] << " " << (i + 1.0) / t->size() << "\n";
       gp << "EOD\n";
@@ -166,6 +170,9 @@ void HapticPlot(const BenchRun& run, std::ostream& gp) {
                     std::to_string(color) + " title '" + r.spec.name + "'");
     plots.push_back("$h_fcl_" + r.spec.name + " using 1:2 with steps lw 1 dt 2 lc " +
                     std::to_string(color) + " notitle");
+    if (!inquery_t.empty())
+      plots.push_back("$h_inq_" + r.spec.name + " using 1:2 with steps lw 1 dt 3 lc " +
+                      std::to_string(color) + " notitle");
     ++color;
   }
   gp << "plot ";

@@ -301,8 +301,12 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
      << " cm), turning, a set depth below first contact, losing and regaining contact (two 1 mm "
         "lift-offs per path; a hand that digs in more than 1 mm too deep stops sliding until it "
         "has climbed back). "
-     << run.settings.haptic_steps << " poses per path. Time = `result.time_us` with default "
-        "`PolyDepthOptions`, over the colliding poses; FCL = `fcl::collide` of "
+     << run.settings.haptic_steps << " poses per path. Time = `result.time_us` of the answer, over "
+        "the colliding poses, with default `PolyDepthOptions` but for `defer_list_builds`, as the "
+        "server's geometry thread runs PolyDepth: a query whose candidate list no longer covers "
+        "it answers without a new one and rebuilds it after the answer (`PrepareNext`, until the "
+        "next pose is due 1 ms after the query began; the table after this one gives that work "
+        "and the same path with the rebuilds inside the queries); FCL = `fcl::collide` of "
         "`BVHModel<OBB>` meshes (boolean, first contact) at the same poses, measured in the same "
         "run after PolyDepth: the cost of a collision test, the yardstick for a warm PD query. "
         "Cold restarts = colliding poses after the first where no coherent start gave an answer; "
@@ -352,30 +356,45 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
          << Pct(m.budget_abs_error.mean) << " / " << Pct(m.budget_abs_error.max) << " |\n";
     }
   }
-  md << "\nWhere the tail comes from. A warm query keeps a list of the leaf-pair boxes near the "
-        "contact and reuses it while the tool stays within its reach; a query that slid out of "
-        "it (or whose iterate moved millimetres away) rebuilds it, descending both hierarchies "
-        "around the contact. Times of the colliding queries that rebuilt and of those that did "
-        "not, the rebuilds' own share of all PolyDepth time (`result.list_build_us`), and how "
-        "many of the slowest 1% rebuilt:\n\n"
-        "| Pair | queries that rebuilt | their median / p99 us | the others' median / p99 us | "
-        "rebuilds' share of PD time | slowest 1% that rebuilt |\n"
-        "|---|---|---|---|---|---|\n";
+  md << "\nAnswer first, rebuild after. A warm query keeps a list of the leaf-pair boxes near "
+        "the contact and reuses it while the tool stays within its reach; a query that slid out "
+        "of it (or whose iterate moved millimetres away) needs a new one, built by descending "
+        "both hierarchies around the contact. Built inside that query, the rebuilds set the "
+        "tail: the comparison pass below solves the same path with `defer_list_builds` off "
+        "(the times of its colliding queries that rebuilt and of those that did not, the "
+        "rebuilds' share of its time, how many of its slowest 1% rebuilt). Deferred, the "
+        "query answers without the new list (descending the hierarchies where the old one does "
+        "not reach; the same answers) and `PrepareNext` builds it after the answer, around it, "
+        "in the rest of the millisecond; a build that does not fit is paused by the next pose "
+        "and goes on after that pose's answer. Busy = answer plus `PrepareNext`, per colliding "
+        "pose: the geometry thread's time per millisecond.\n\n"
+        "| Pair | rebuilt in the query: median / p99 / max us | answers, rebuilds deferred: "
+        "median / p99 / max us | p99 ratio (deferred / in the query) | busy median / p99 / max us "
+        "| rebuilds completed after answers (paused by the next pose) | in the query: queries that "
+        "rebuilt | their median / p99 us | the others' median / p99 us | rebuilds' share of its "
+        "time | its slowest 1% that rebuilt |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (size_t i = 0; i < run.haptic.size(); ++i) {
     const HapticPairResult& r = run.haptic[i];
     const HapticSummary& m = summaries[i];
-    md << "| " << r.spec.name << " | " << m.with_build_us.n << " of " << m.colliding << " ("
-       << Pct(m.colliding > 0 ? static_cast<double>(m.with_build_us.n) / m.colliding : kNaN, 0)
+    md << "| " << r.spec.name << " | " << F(m.inquery_us.median) << " / " << F(m.inquery_us.p99)
+       << " / " << F(m.inquery_us.max) << " | " << F(m.pd_us.median) << " / " << F(m.pd_us.p99)
+       << " / " << F(m.pd_us.max) << " | " << F(m.pd_us.p99 / m.inquery_us.p99, 2) << " | "
+       << F(m.busy_us.median) << " / " << F(m.busy_us.p99) << " / " << F(m.busy_us.max) << " | "
+       << m.lists_completed << " (" << m.prepare_paused << ") | " << m.with_build_us.n << " of "
+       << m.inquery_us.n << " ("
+       << Pct(m.inquery_us.n > 0 ? static_cast<double>(m.with_build_us.n) / m.inquery_us.n : kNaN, 0)
        << ") | " << F(m.with_build_us.median) << " / " << F(m.with_build_us.p99) << " | "
        << F(m.without_build_us.median) << " / " << F(m.without_build_us.p99) << " | "
-       << Pct(m.build_time_share, 0) << " | " << m.slowest_1pct_with_build << " of "
-       << m.slowest_1pct << " |\n";
+       << Pct(m.build_time_share, 0) << " | " << m.inquery_slowest_1pct_with_build << " of "
+       << m.inquery_slowest_1pct << " |\n";
   }
   md << "\nWhere the work goes: each kind of pair query's share of the box and triangle tests "
         "(`result.work`) of all colliding queries and of the slowest 1% by time. Collision = "
         "collision tests (the query's own, the cross-check's probes, the verification); "
         "localisation = feature pairs near a configuration (step 0's free test-and-localise "
-        "included); out-projection = translational CCD; list builds = the leaf-pair lists; "
+        "included); out-projection = translational CCD; list builds = the leaf-pair lists (none "
+        "inside a deferring query); "
         "other = the PD lower bound that lets a check skip its probes (depth_lower_bound.h):\n\n"
         "| Pair | all colliding: collision / localisation / out-projection / list builds / other "
         "| slowest 1%: collision / localisation / out-projection / list builds / other |\n"

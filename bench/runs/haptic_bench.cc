@@ -1,6 +1,7 @@
 #include "bench/runs/haptic_bench.h"
 
 #include <algorithm>
+#include <chrono>
 #include <utility>
 
 #include "bench/runs/fcl_baselines.h"
@@ -27,10 +28,29 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
   out.description = path.description;
   const pd::Isometry3 X_WS = ScenePose(pair);
 
-  // PolyDepth alone first, one warm-started solver for the whole path.
+  // PolyDepth alone first, one warm-started solver for the whole path, as
+  // the server's geometry thread runs it: each answer first, then the list
+  // rebuild it deferred (PrepareNext) until the next pose is due, a
+  // millisecond after the answer's query began.
+  pd::PolyDepthOptions deferring;
+  deferring.defer_list_builds = true;
+  auto prepare_until_next_pose = [](pd::PolyDepthSolver& solver, double query_us,
+                                    HapticStep* s) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double left_us = kHapticPosePeriodUs - query_us;
+    const pd::PolyDepthSolver::Preparation p = solver.PrepareNext([&] {
+      return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0)
+                 .count() >= left_us;
+    });
+    if (s == nullptr) return;
+    s->prepare_us = p.time_us;
+    s->prepare_box_tests = static_cast<double>(p.box_tests);
+    s->lists_completed = p.lists_completed;
+    s->prepare_paused = !p.done;
+  };
   {
     Progress bar(tag + "PolyDepth (haptic)", static_cast<int>(path.cases.size()));
-    pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, pd::PolyDepthOptions{});
+    pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, deferring);
     bool previous_seen = false;
     for (const Case& c : path.cases) {
       const pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS, /*coherent=*/true);
@@ -48,25 +68,39 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       s.box_tests = static_cast<double>(r.box_tests);
       s.triangle_tests = static_cast<double>(r.triangle_tests);
       s.pd.work = r.work;
-      s.list_builds = r.list_builds;
-      s.list_build_us = r.list_build_us;
       s.cold_restart = previous_seen && r.in_collision && r.warm_start_failed;
       s.cross_checked = r.cross_checked;
+      prepare_until_next_pose(solver, r.time_us, &s);
       previous_seen = true;
       out.steps.push_back(s);
       bar.Tick();
     }
   }
+  // The comparison: the same path with the rebuilds inside the queries.
+  {
+    Progress bar(tag + "PolyDepth (haptic, lists rebuilt in the query)",
+                 static_cast<int>(out.steps.size()));
+    pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, pd::PolyDepthOptions{});
+    for (HapticStep& s : out.steps) {
+      const pd::PenetrationResult r = solver.Solve(s.c.X_WP, X_WS, /*coherent=*/true);
+      s.inquery_time_us = r.time_us;
+      s.inquery_in_collision = r.in_collision;
+      s.list_builds = r.list_builds;
+      s.list_build_us = r.list_build_us;
+      bar.Tick();
+    }
+  }
   // The same path again in bounded time (the geometry thread's mode): each
   // query stops at the budget with its best verified-free answer so far and
-  // the next goes on from it.
+  // the next goes on from it (and rebuilds deferred as above).
   if (st.haptic_budget_us > 0.0) {
     Progress bar(tag + "PolyDepth (haptic, bounded time)", static_cast<int>(out.steps.size()));
-    pd::PolyDepthOptions options;
+    pd::PolyDepthOptions options = deferring;
     options.max_time_us = st.haptic_budget_us;
     pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, options);
     for (HapticStep& s : out.steps) {
       const pd::PenetrationResult r = solver.Solve(s.c.X_WP, X_WS, /*coherent=*/true);
+      prepare_until_next_pose(solver, r.time_us, nullptr);
       s.has_budget = true;
       s.budget_in_collision = r.in_collision;
       s.budget_converged = r.converged;
@@ -124,6 +158,9 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   std::vector<double> pd_us, free_us, fcl_us, iters, boxes, tris, err, signed_err;
   std::vector<double> with_build_us, without_build_us, budget_us, budget_err;
   std::vector<const HapticStep*> by_time;  // colliding queries (sorted slowest first below)
+  std::vector<const HapticStep*> by_inquery_time;  // the same, rebuilds in the query
+  std::vector<double> busy_us, prepare_us, inquery_us;
+  double inquery_total_us = 0.0;
   std::vector<pd::PenetrationResult::Work> works;
   double build_us = 0.0;
   for (const HapticStep& s : r.steps) {
@@ -135,10 +172,19 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
     }
     ++m.colliding;
     pd_us.push_back(s.pd.time_us);
-    (s.list_builds > 0 ? with_build_us : without_build_us).push_back(s.pd.time_us);
+    busy_us.push_back(s.pd.time_us + s.prepare_us);
+    prepare_us.push_back(s.prepare_us);
+    m.lists_completed += s.lists_completed;
+    m.prepare_paused += s.prepare_paused;
+    if (s.inquery_in_collision) {
+      inquery_us.push_back(s.inquery_time_us);
+      (s.list_builds > 0 ? with_build_us : without_build_us).push_back(s.inquery_time_us);
+      by_inquery_time.push_back(&s);
+      build_us += s.list_build_us;
+      inquery_total_us += s.inquery_time_us;
+    }
     by_time.push_back(&s);
     works.push_back(s.pd.work);
-    build_us += s.list_build_us;
     fcl_us.push_back(s.fcl_time_us);
     iters.push_back(s.pd.iterations);
     boxes.push_back(s.box_tests);
@@ -178,8 +224,10 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   m.mean_triangle_tests = Mean(tris);
   m.with_build_us = Summarize(with_build_us);
   m.without_build_us = Summarize(without_build_us);
-  const double pd_total = m.pd_us.n > 0 ? m.pd_us.mean * m.pd_us.n : 0.0;
-  if (pd_total > 0.0) m.build_time_share = build_us / pd_total;
+  if (inquery_total_us > 0.0) m.build_time_share = build_us / inquery_total_us;
+  m.busy_us = Summarize(busy_us);
+  m.prepare_us = Summarize(prepare_us);
+  m.inquery_us = Summarize(inquery_us);
   // The slowest 1% (at least one query), slowest first.
   std::stable_sort(by_time.begin(), by_time.end(), [](const HapticStep* a, const HapticStep* b) {
     return a->pd.time_us > b->pd.time_us;
@@ -187,10 +235,16 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   m.slowest_1pct = std::min<int>(static_cast<int>(by_time.size()),
                                  std::max(1, static_cast<int>(by_time.size()) / 100));
   std::vector<pd::PenetrationResult::Work> slowest_works;
-  for (int i = 0; i < m.slowest_1pct; ++i) {
-    m.slowest_1pct_with_build += by_time[i]->list_builds > 0;
-    slowest_works.push_back(by_time[i]->pd.work);
-  }
+  for (int i = 0; i < m.slowest_1pct; ++i) slowest_works.push_back(by_time[i]->pd.work);
+  std::stable_sort(by_inquery_time.begin(), by_inquery_time.end(),
+                   [](const HapticStep* a, const HapticStep* b) {
+                     return a->inquery_time_us > b->inquery_time_us;
+                   });
+  m.inquery_slowest_1pct = std::min<int>(
+      static_cast<int>(by_inquery_time.size()),
+      std::max(1, static_cast<int>(by_inquery_time.size()) / 100));
+  for (int i = 0; i < m.inquery_slowest_1pct; ++i)
+    m.inquery_slowest_1pct_with_build += by_inquery_time[i]->list_builds > 0;
   m.work = SharesOf(works);
   m.slowest_1pct_work = SharesOf(slowest_works);
   m.abs_error = Summarize(err);

@@ -13,6 +13,10 @@
 
 namespace pd_bench {
 
+// The pose spacing of the haptic paths (us): a geometry thread answering one
+// pose per servo tick has the rest of the millisecond for deferred work.
+constexpr double kHapticPosePeriodUs = 1000.0;
+
 struct HapticSummary {
   int steps = 0, colliding = 0;
   Summary pd_us;           // colliding poses
@@ -21,12 +25,20 @@ struct HapticSummary {
   double median_ratio = kNaN, p99_ratio = kNaN;  // PolyDepth / FCL, colliding poses
   double p999_us = kNaN;
   double mean_iterations = kNaN, mean_box_tests = kNaN, mean_triangle_tests = kNaN;
-  // Where the tail comes from: colliding queries that rebuilt the leaf-pair
-  // list near the contact and those that did not, the rebuilds' share of all
-  // PolyDepth time, and how many of the slowest 1% rebuilt.
-  Summary with_build_us, without_build_us;
+  // Answer first, rebuild after (PolyDepthOptions::defer_list_builds), over
+  // the colliding poses: the answer plus the PrepareNext after it (the
+  // geometry thread's busy time per pose), PrepareNext alone, the rebuilds
+  // it completed and the calls the next pose paused.
+  Summary busy_us, prepare_us;
+  int lists_completed = 0, prepare_paused = 0;
+  // The comparison pass, lists rebuilt inside the queries: its times, and
+  // where its tail comes from: the queries that rebuilt the leaf-pair list
+  // near the contact and those that did not, the rebuilds' share of its
+  // time, and how many of its slowest 1% rebuilt.
+  Summary inquery_us, with_build_us, without_build_us;
   double build_time_share = kNaN;
-  int slowest_1pct = 0, slowest_1pct_with_build = 0;
+  int inquery_slowest_1pct = 0, inquery_slowest_1pct_with_build = 0;
+  int slowest_1pct = 0;
   // Where the work (box + triangle tests) went: over all colliding queries
   // and over the slowest 1% of them.
   WorkShares work, slowest_1pct_work;

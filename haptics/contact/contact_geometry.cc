@@ -49,6 +49,12 @@ bool ContactGeometry::any_polydepth() const {
   return false;
 }
 
+bool ContactGeometry::PrepareNext(const std::function<bool()>& pause) {
+  for (int i : candidates_now_)
+    if (!solvers_[i]->PrepareNext(pause)) return false;
+  return true;
+}
+
 void ContactGeometry::ResetWarmStarts() {
   for (auto& solver : solvers_) solver->ResetWarmStart();
   have_previous_ = false;

@@ -16,6 +16,7 @@
 // the solvers' scratch has grown. Not thread-safe: one thread queries at a
 // time.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -54,6 +55,12 @@ class ContactGeometry {
   // Broad phase over the tool's motion since the previous query, PD of every
   // candidate, their models into *out (Reserve()d for num_objects()).
   void Query(const Isometry3& X_WT, int64_t request_tick, ContactSnapshot* out);
+
+  // The work the last queries deferred (PolyDepthOptions::defer_list_builds:
+  // candidate-list rebuilds after their answers) for the pairs in reach,
+  // until done (true) or pause() says stop (asked every few dozen box tests;
+  // the next call goes on).
+  bool PrepareNext(const std::function<bool()>& pause = {});
 
   // Forget warm starts and the previous pose (after the tool jumped).
   void ResetWarmStarts();

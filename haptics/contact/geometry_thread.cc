@@ -43,6 +43,10 @@ bool GeometryWorker::RunOnce(double min_query_time_s) {
   queries_.fetch_add(1, std::memory_order_relaxed);
   answers_.Publish();
   answered_.store(tick);
+  // Then, until the servo posts its next pose, the work the query left for
+  // after its answer (candidate-list rebuilds): off the answer's path.
+  geometry_->PrepareNext(
+      [this, tick] { return posted_.load(std::memory_order_relaxed) != tick; });
   busy_.store(false);
   return true;
 }

@@ -202,6 +202,15 @@ struct PolyDepthSolver::Impl {
   CandidatePairs candidates;  // leaf pairs near the last contact (warm start)
   LeafPairRecord record;      // leaf pairs near the last recorded out-projection
   bool list_follows_iterates = false;  // this query may still move the list to an iterate
+  // PolyDepthOptions::defer_list_builds: the list being built in
+  // PrepareNext (it replaces `candidates` once complete), and the build the
+  // current query asks for: one around its answer (shifted by
+  // wanted_lead, radius wanted_radius) where the list did not cover the
+  // query, or one of the usual radius around it where an iterate left it.
+  CandidatePairs next_candidates;
+  bool start_wanted = false, follow_wanted = false;
+  Vector3 wanted_lead = Vector3::Zero();
+  double wanted_radius = 0.0;
   int list_builds = 0;          // this query's list builds and their wall time (us)
   double list_build_us = 0.0;
   // About how many leaf pairs the list holds (0 when there is none).
@@ -210,13 +219,15 @@ struct PolyDepthSolver::Impl {
     return static_cast<double>(candidates.entries().size()) *
            (candidates.grain() == CandidatePairs::Grain::kTwigPairs ? kTwigEntryLeafPairs : 1.0);
   }
+  // Where the last list was dense, the next pairs small subtrees
+  // (CandidatePairs::Grain): a dense patch's build is the query's work.
+  CandidatePairs::Grain NextGrain() const {
+    return ListLeafPairs() > kTwigListLeafPairs ? CandidatePairs::Grain::kTwigPairs
+                                                : CandidatePairs::Grain::kLeafPairs;
+  }
   void BuildList(const ModelPair& pair, const Vector3& q_center_S, double radius) {
     const auto t0 = std::chrono::steady_clock::now();
-    // Where the last list was dense, the next pairs small subtrees
-    // (CandidatePairs::Grain): a dense patch's build is the query's work.
-    candidates.Build(pair, q_center_S, radius,
-                     ListLeafPairs() > kTwigListLeafPairs ? CandidatePairs::Grain::kTwigPairs
-                                                          : CandidatePairs::Grain::kLeafPairs);
+    candidates.Build(pair, q_center_S, radius, NextGrain());
     ++list_builds;
     list_build_us +=
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -290,6 +301,11 @@ struct PolyDepthSolver::Impl {
     if (!list_follows_iterates || !candidates.valid() ||
         candidates.Covers(pair, q_S, q_S, kListIterationRoom * contact_distance))
       return;
+    if (opt.defer_list_builds) {  // after the answer, around it
+      follow_wanted = true;
+      list_follows_iterates = false;
+      return;
+    }
     BuildList(pair, q_S, opt.candidate_radius * size + kListIterationRoom * contact_distance);
     list_follows_iterates = false;
   }
@@ -439,8 +455,28 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
 
 PolyDepthSolver::~PolyDepthSolver() = default;
 
+PolyDepthSolver::Preparation PolyDepthSolver::PrepareNext(const std::function<bool()>& pause) {
+  Impl& s = *impl_;
+  Preparation p;
+  if (!s.next_candidates.building()) return p;
+  const auto t0 = std::chrono::steady_clock::now();
+  ProximityCounters counters;
+  const std::function<bool()> never = [] { return false; };
+  p.done = s.next_candidates.ContinueBuild(pause ? pause : never, &counters);
+  if (p.done) {
+    std::swap(s.candidates, s.next_candidates);
+    s.next_candidates.Invalidate();
+    p.lists_completed = 1;
+  }
+  p.box_tests = counters.box_tests;
+  p.time_us =
+      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  return p;
+}
+
 void PolyDepthSolver::ResetWarmStart() {
   impl_->candidates.Invalidate();
+  impl_->next_candidates.Invalidate();
   impl_->previous_constraints.clear();
   impl_->witness = CollisionWitness{};
   impl_->query_witness = CollisionWitness{};
@@ -541,8 +577,9 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // free frame (its out-projection records the leaf pairs it needs, and an
   // iterate that leaves the old list moves it there, FollowWithList).
   bool build_pending = false;
-  Vector3 build_center = Vector3::Zero();
+  Vector3 build_center = Vector3::Zero(), build_lead = Vector3::Zero();
   double build_radius = 0.0;
+  s.start_wanted = s.follow_wanted = false;
   if (warm && (s.has_previous || s.has_previous_free)) {
     const double need =
         (have_prediction ? 0.0 : 2.0 * motion) + kListIterationRoom * contact_distance;
@@ -552,6 +589,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       // both meshes' leaf pairs (one such build took minutes on 52k x 75k
       // triangles). The queries descend the hierarchies instead.
       s.candidates.Invalidate();
+      s.next_candidates.Invalidate();
     } else if (s.has_previous && !s.candidates.Covers(pair, center, center, need)) {
       // Sliding: centre the new list ahead along the motion, where the
       // coming queries will be, so it lasts longer than one centred here.
@@ -570,7 +608,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         reach = std::max(options_.candidate_radius * size, std::min(reach, capped));
       }
       const double lead = have_prediction && v.norm() > 0.0 ? kListLead * reach : 0.0;
-      build_center = lead > 0.0 ? Vector3(center + lead * v.normalized()) : center;
+      build_lead = lead > 0.0 ? Vector3(lead * v.normalized()) : Vector3::Zero();
+      build_center = center + build_lead;
       build_radius = reach + need;
       build_pending = true;
     }
@@ -580,7 +619,15 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // the query pose, else descends the hierarchies (stopping at the first
   // intersecting triangle pair; the last one is tried first).
   result.in_collision = InCollision(pair, Vector3::Zero(), &s.query_witness);
-  if (result.in_collision && build_pending) s.BuildList(pair, build_center, build_radius);
+  if (result.in_collision && build_pending) {
+    if (options_.defer_list_builds) {
+      s.start_wanted = true;
+      s.wanted_lead = build_lead;
+      s.wanted_radius = build_radius;
+    } else {
+      s.BuildList(pair, build_center, build_radius);
+    }
+  }
   if (!result.in_collision) {
     // Remember this free pose: the next contact starts from it.
     s.has_previous = false;
@@ -988,6 +1035,20 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     s.previous_n_S = s.best_q_S / std::max(s.best_norm, 1e-300);
     s.previous_X_SP = pair.X_SP;
     s.previous_constraints = s.constraints;
+    if (s.start_wanted || s.follow_wanted) {
+      // Deferred (PrepareNext): around the answer, which the query did not
+      // know when it found its list short. A build under way that will
+      // cover the answer goes on.
+      const double room = kListIterationRoom * contact_distance;
+      if (!s.next_candidates.BuildWillCover(pair, s.best_q_S, room)) {
+        if (s.start_wanted)
+          s.next_candidates.BeginBuild(pair, s.best_q_S + s.wanted_lead, s.wanted_radius,
+                                       s.NextGrain());
+        else
+          s.next_candidates.BeginBuild(pair, s.best_q_S, options_.candidate_radius * size + room,
+                                       s.NextGrain());
+      }
+    }
   } else {
     s.has_previous = false;
     s.previous_constraints.clear();

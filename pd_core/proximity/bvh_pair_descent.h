@@ -125,24 +125,33 @@ struct Descent {
     if (n == 2 && child[0].key < child[1].key) std::swap(child[0], child[1]);
     return n;
   }
-  // Depth-first below `root` (a kept pair) on `stack`, which holds at least
-  // the depth of the subtree pairs; false if the leaf action stopped it.
+  // Depth-first over the kept pairs on stack[0, *top) until none is left
+  // (true), the leaf action stops it (false), or pause(), asked after each
+  // pair visited, says stop (true, the pairs still to visit left on the
+  // stack: a call always makes progress). The stack holds at least the
+  // depth of the subtree pairs.
+  template <typename Stack, typename Pause>
+  bool DepthFirst(Stack& stack, int* top, Pause&& pause) {
+    while (*top > 0) {
+      const DescentEntry e = stack[--*top];
+      if (!alive(e.key)) continue;
+      if (IsLeafPair(e)) {
+        if (!Leaf(e)) return false;
+      } else {
+        DescentEntry child[2];
+        const int n = Expand(e, child);
+        for (int c = 0; c < n; ++c) stack[(*top)++] = child[c];  // child[1] on top
+      }
+      if (*top > 0 && pause()) return true;
+    }
+    return true;
+  }
+  // Depth-first below `root` (a kept pair); false if the leaf action stopped it.
   template <typename Stack>
   bool DepthFirst(Stack& stack, const DescentEntry& root) {
     int top = 0;
     stack[top++] = root;
-    while (top > 0) {
-      const DescentEntry e = stack[--top];
-      if (!alive(e.key)) continue;
-      if (IsLeafPair(e)) {
-        if (!Leaf(e)) return false;
-        continue;
-      }
-      DescentEntry child[2];
-      const int n = Expand(e, child);
-      for (int c = 0; c < n; ++c) stack[top++] = child[c];  // child[1] on top
-    }
-    return true;
+    return DepthFirst(stack, &top, [] { return false; });
   }
   // Best-first from `root` on a binary min-heap of the fixed array `heap`,
   // with `stack` for the depth-first fallback when the heap is full.
@@ -238,6 +247,58 @@ bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&&
   }
   if (counters) counters->box_tests += d.tests;
   return completed;
+}
+
+// A depth-first descent (DescendBvhPair) done in pieces: a candidate list
+// built in a real-time thread's idle time pauses when the next query is due
+// and goes on after it. Holds the node pairs still to visit.
+class DescentCursor {
+ public:
+  // Forgets any descent under way: the next ContinueBvhPairDescent starts
+  // at the roots.
+  void Reset() {
+    started_ = false;
+    top_ = 0;
+  }
+  bool started() const { return started_; }
+  // True once the descent has visited every pair (or its leaf action stopped it).
+  bool done() const { return started_ && top_ == 0; }
+
+ private:
+  template <typename NodeTest, typename LeafFn, typename Pause>
+  friend bool ContinueBvhPairDescent(const Bvh&, const Bvh&, NodeTest&&, LeafFn&&, Pause&&,
+                                     DescentCursor*, ProximityCounters*);
+  std::vector<internal::DescentEntry> stack_;  // sized once per descent start
+  int top_ = 0;
+  bool started_ = false;
+};
+
+// DescendBvhPair<kDepthFirst> (alive always true) run in pieces: the first
+// call after cursor->Reset() starts at the roots, later calls go on where
+// the last one paused. pause() is asked after each node pair visited
+// (expanded, or a leaf pair handed to on_leaf_pair) while pairs remain;
+// the pairs visited, in order, and the box tests counted are those of one
+// uninterrupted descent. Returns true once the descent is complete.
+template <typename NodeTest, typename LeafFn, typename Pause>
+bool ContinueBvhPairDescent(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test,
+                            LeafFn&& on_leaf_pair, Pause&& pause, DescentCursor* cursor,
+                            ProximityCounters* counters) {
+  auto alive = [](double) { return true; };
+  internal::Descent<std::remove_reference_t<NodeTest>, decltype(alive),
+                    std::remove_reference_t<LeafFn>>
+      d{bvh_P.nodes(), bvh_S.nodes(), test, alive, on_leaf_pair};
+  if (!cursor->started_) {
+    cursor->started_ = true;
+    cursor->top_ = 0;
+    if (bvh_P.empty() || bvh_S.empty()) return true;
+    cursor->stack_.resize(bvh_P.depth() + bvh_S.depth() + 1);
+    internal::DescentEntry root{0, 0, -std::numeric_limits<double>::infinity()};
+    d.tests = 1;
+    if (test(d.nodes_P[0], d.nodes_S[0], &root.key)) cursor->stack_[cursor->top_++] = root;
+  }
+  if (!d.DepthFirst(cursor->stack_, &cursor->top_, pause)) cursor->top_ = 0;  // stopped: done
+  if (counters) counters->box_tests += d.tests;
+  return cursor->top_ == 0;
 }
 
 // Calls fn(tp, ts) for every triangle pair of leaf nodes ip (probe) and is

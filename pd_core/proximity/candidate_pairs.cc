@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "pd_core/proximity/box_overlap.h"
-#include "pd_core/proximity/bvh_pair_descent.h"
 
 namespace pd {
 
@@ -22,19 +21,48 @@ constexpr double kNoEarlyExit = std::numeric_limits<double>::infinity();
 
 void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, double radius,
                            Grain grain) {
-  WorkScope scope(pair.counters, QueryKind::kListBuild);
+  BeginBuild(pair, q_center_S, radius, grain);
+  ContinueBuild([] { return false; }, pair.counters);
+}
+
+void CandidatePairs::BeginBuild(const ModelPair& pair, const Vector3& q_center_S,
+                                double radius, Grain grain) {
   entries_.clear();
   X_SP_ = pair.X_SP;
   q_center_S_ = q_center_S;
   radius_ = radius;
   probe_ = &pair.P;
   scene_ = &pair.S;
-  valid_ = true;
+  valid_ = false;
+  building_ = true;
   grain_ = grain;
-  ProbeBoxMemo probe_box(pair.X_SP, q_center_S);
-  const auto& nodes_P = pair.P.bvh().nodes();
-  const auto& nodes_S = pair.S.bvh().nodes();
+  cursor_.Reset();
+}
+
+bool CandidatePairs::BuildWillCover(const ModelPair& pair, const Vector3& q_S,
+                                    double extra) const {
+  if (!building() || probe_ != &pair.P || scene_ != &pair.S) return false;
+  double rot;
+  Vector3 shift;
+  Motion(pair, &rot, &shift);
+  return (shift + q_S).norm() + rot + extra < radius_;
+}
+
+bool CandidatePairs::ContinueBuild(const std::function<bool()>& pause,
+                                   ProximityCounters* counters) {
+  if (!building_) return valid_;
+  WorkScope scope(counters, QueryKind::kListBuild);
+  const double radius = radius_;
+  const Grain grain = grain_;
+  ProbeBoxMemo probe_box(X_SP_, q_center_S_);
+  const Bvh& bvh_P = probe_->bvh();
+  const Bvh& bvh_S = scene_->bvh();
+  const auto& nodes_P = bvh_P.nodes();
+  const auto& nodes_S = bvh_S.nodes();
   int64_t full_tests = 0;
+  // pause() is asked every kPauseStride pairs visited (a few us of work).
+  constexpr int kPauseStride = 32;
+  int visits = 0;
   // The descent prunes on the six face axes only (no edge-edge axes, no
   // sphere roots): kept pairs, most of those tested, would pay for all of
   // them. An entry's pair is tested once, where the descent reaches it: its
@@ -43,8 +71,8 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
   // leaf pair: 10-14% of a build's box tests on the benchmark's haptic paths,
   // same lists). One nearer than kFullTestGap radii along them gets every
   // axis. The descent never goes below an entry's pair.
-  DescendBvhPair(
-      pair.P.bvh(), pair.S.bvh(),
+  const bool complete = ContinueBvhPairDescent(
+      bvh_P, bvh_S,
       [&](const BvhNode& a, const BvhNode& b, double* key) {
         const int32_t ip = static_cast<int32_t>(&a - nodes_P.data());
         const int32_t is = static_cast<int32_t>(&b - nodes_S.data());
@@ -69,10 +97,15 @@ void CandidatePairs::Build(const ModelPair& pair, const Vector3& q_center_S, dou
         if (gap <= radius) entries_.push_back({ip, is, gap, axis_S, axis_gap});
         return false;
       },
-      [](double) { return true; }, [](int, int) { return true; }, pair.counters);
-  if (pair.counters) pair.counters->box_tests += full_tests;
+      [](int, int) { return true; },
+      [&] { return ++visits % kPauseStride == 0 && pause(); }, &cursor_, counters);
+  if (counters) counters->box_tests += full_tests;
+  if (!complete) return false;
   std::sort(entries_.begin(), entries_.end(),
             [](const Entry& x, const Entry& y) { return x.gap < y.gap; });
+  valid_ = true;
+  building_ = false;
+  return true;
 }
 
 int CandidatePairs::NearCount(double distance, double displacement) const {

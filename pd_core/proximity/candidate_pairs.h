@@ -10,8 +10,10 @@
 // can touch is in the list while D + d stays below the radius.
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
+#include "pd_core/proximity/bvh_pair_descent.h"
 #include "pd_core/proximity/model_pair.h"
 
 namespace pd {
@@ -70,6 +72,22 @@ class CandidatePairs {
   void Build(const ModelPair& pair, const Vector3& q_center_S, double radius,
              Grain grain = Grain::kLeafPairs);
 
+  // Build in pieces, for a real-time caller's idle time: BeginBuild takes
+  // the configuration (no box tests), each ContinueBuild descends until the
+  // list is complete (true: valid from then on) or pause() says stop (asked
+  // every few dozen box tests; false: call again later, the pose may have
+  // moved meanwhile). The list is invalid until complete; the entries, and
+  // the box tests booked to `counters` (kListBuild), are those of Build.
+  void BeginBuild(const ModelPair& pair, const Vector3& q_center_S, double radius,
+                  Grain grain = Grain::kLeafPairs);
+  bool ContinueBuild(const std::function<bool()>& pause, ProximityCounters* counters);
+  // True while a BeginBuild has not completed.
+  bool building() const { return building_; }
+  // True if the configurations of `pair` translated by q_S, grown by
+  // `extra` (m), lie within the reach of the list being built (as Covers
+  // will say once it is complete).
+  bool BuildWillCover(const ModelPair& pair, const Vector3& q_S, double extra) const;
+
   // Upper bound on how far any probe point is from where it was at the build
   // configuration, for `pair`'s pose translated by q_S (m); +inf when the
   // list is not this pair's or not valid.
@@ -96,7 +114,10 @@ class CandidatePairs {
   bool MotionSinceBuild(const ModelPair& pair, const Vector3& q_S, Vector3* shift_S,
                         double* rotation_bound) const;
 
-  void Invalidate() { valid_ = false; }
+  void Invalidate() {
+    valid_ = false;
+    building_ = false;
+  }
   bool valid() const { return valid_; }
   Grain grain() const { return grain_; }
   double radius() const { return radius_; }
@@ -113,6 +134,8 @@ class CandidatePairs {
   const CollisionModel* probe_ = nullptr;
   const CollisionModel* scene_ = nullptr;
   std::vector<Entry> entries_;
+  bool building_ = false;  // a BeginBuild has not completed
+  DescentCursor cursor_;   // where that build's descent stands
 };
 
 }  // namespace pd

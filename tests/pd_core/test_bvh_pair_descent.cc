@@ -2,7 +2,9 @@
 // the leaf pairs a brute-force sweep keeps, in any tree shape, including
 // trees deeper than its fixed stack (which once overflowed silently), and
 // depth is measured from the links, not trusted. Best-first order visits the
-// same pairs, lowest key first, also when its fixed heap fills up.
+// same pairs, lowest key first, also when its fixed heap fills up. A
+// depth-first descent run in pieces (ContinueBvhPairDescent, a list built in
+// idle time) visits the same pairs in the same order as one uninterrupted.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -194,6 +196,93 @@ TEST(BvhPairDescent, BestFirstEndsAtTheFirstPairNotAlive) {
   for (double k : keys) EXPECT_LT(k, 3.0);
   EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
   EXPECT_LT(limited.box_tests, all.box_tests / 4);
+}
+
+
+// Leaf pairs of a depth-first descent run in pieces, pausing after every
+// `stride` pairs visited; *calls gets how many calls it took.
+std::vector<std::pair<int, int>> VisitInPieces(const Bvh& a, const Bvh& b, int stride,
+                                               ProximityCounters* counters, int* calls) {
+  std::vector<std::pair<int, int>> visited;
+  DescentCursor cursor;
+  EXPECT_FALSE(cursor.started());
+  int visits = 0;
+  *calls = 0;
+  for (;;) {
+    ++*calls;
+    const bool done = ContinueBvhPairDescent(
+        a, b,
+        [](const BvhNode& x, const BvhNode& y, double* key) {
+          *key = 0.0;
+          return Overlap(x, y);
+        },
+        [&](int ip, int is) {
+          visited.push_back({ip, is});
+          return true;
+        },
+        [&] { return ++visits % stride == 0; }, &cursor, counters);
+    EXPECT_EQ(done, cursor.done());
+    if (done) break;
+    if (*calls > 100000) {
+      ADD_FAILURE() << "no end";
+      break;
+    }
+  }
+  return visited;
+}
+
+TEST(BvhPairDescent, ADescentInPiecesVisitsWhatOneDescentVisitsInTheSameOrder) {
+  for (const auto& [a, b] : {std::pair(Caterpillar(300, 0.0), Caterpillar(300, 0.5)),
+                             std::pair(Balanced(6, 1.0), Balanced(6, 0.7)),
+                             std::pair(Balanced(5, 0.0), Balanced(5, 0.0))}) {
+    std::vector<std::pair<int, int>> whole;
+    ProximityCounters whole_count;
+    DescendBvhPair(
+        a, b,
+        [](const BvhNode& x, const BvhNode& y, double* key) {
+          *key = 0.0;
+          return Overlap(x, y);
+        },
+        [](double) { return true; },
+        [&](int ip, int is) {
+          whole.push_back({ip, is});
+          return true;
+        },
+        &whole_count);
+    ASSERT_FALSE(whole.empty());
+    for (int stride : {1, 7, 1000000}) {
+      ProximityCounters count;
+      int calls = 0;
+      EXPECT_EQ(VisitInPieces(a, b, stride, &count, &calls), whole) << "stride " << stride;
+      EXPECT_EQ(count.box_tests, whole_count.box_tests) << "stride " << stride;
+      // Pausing after every pair: one call per pair visited, about.
+      if (stride == 1) EXPECT_GT(calls, static_cast<int>(whole.size()));
+      if (stride == 1000000) EXPECT_EQ(calls, 1);
+    }
+  }
+}
+
+TEST(BvhPairDescent, AResetCursorStartsAgainAtTheRoots) {
+  const Bvh a = Balanced(5, 1.0), b = Balanced(5, 0.7);
+  DescentCursor cursor;
+  std::vector<std::pair<int, int>> visited;
+  auto test = [](const BvhNode& x, const BvhNode& y, double* key) {
+    *key = 0.0;
+    return Overlap(x, y);
+  };
+  auto leaf = [&](int ip, int is) {
+    visited.push_back({ip, is});
+    return true;
+  };
+  // A few pieces, then a reset: the next run is a whole descent of its own.
+  for (int k = 0; k < 5; ++k) ContinueBvhPairDescent(a, b, test, leaf, [] { return true; }, &cursor, nullptr);
+  ASSERT_FALSE(cursor.done());
+  cursor.Reset();
+  visited.clear();
+  EXPECT_TRUE(ContinueBvhPairDescent(a, b, test, leaf, [] { return false; }, &cursor, nullptr));
+  int calls = 0;
+  ProximityCounters count;
+  EXPECT_EQ(visited, VisitInPieces(a, b, 1000000, &count, &calls));
 }
 
 }  // namespace

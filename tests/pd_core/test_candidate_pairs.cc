@@ -4,6 +4,8 @@
 // distance that a full descent reaches, although it skips the entries whose
 // stored separating axis proves them apart without a box test. And on a real
 // mesh path the skipping must pay: fewer box tests than walking the prefix.
+// A list built in pieces (a geometry thread's idle time) is the list of one
+// build, and not valid before it is complete.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -135,6 +137,59 @@ TEST_P(CandidatePairsGrain, ListWalkReachesEveryTrianglePairADescentReachesAfter
   // The moves stay inside the list and many of them touch the surface.
   EXPECT_GE(compared, 150);
   EXPECT_GE(nonempty, 30);
+}
+
+
+TEST_P(CandidatePairsGrain, ABuildInPiecesIsTheBuildInOneAndInvalidUntilComplete) {
+  const ModelPair pair = PairAt(Vector3::Zero(), 0.0, Vector3::UnitZ());
+  ProximityCounters one_count, pieces_count;
+  ModelPair counted = pair;
+  counted.counters = &one_count;
+  CandidatePairs one;
+  one.Build(counted, Vector3::Zero(), radius, GetParam());
+  ASSERT_TRUE(one.valid());
+  ASSERT_GT(one.entries().size(), 100u);
+
+  CandidatePairs pieces;
+  pieces.BeginBuild(pair, Vector3::Zero(), radius, GetParam());
+  EXPECT_TRUE(pieces.building());
+  EXPECT_FALSE(pieces.valid());
+  EXPECT_EQ(pieces.BuildWillCover(pair, Vector3::Zero(), 0.0), true);
+  EXPECT_EQ(pieces.BuildWillCover(pair, Vector3(2.0 * radius, 0, 0), 0.0), false);
+  int calls = 0;
+  int64_t most = 0;
+  for (;;) {
+    ++calls;
+    const int64_t before = pieces_count.box_tests;
+    // Always asked to stop: each call does a few dozen pairs' work.
+    const bool done = pieces.ContinueBuild([] { return true; }, &pieces_count);
+    most = std::max(most, pieces_count.box_tests - before);
+    if (done) break;
+    EXPECT_FALSE(pieces.valid());
+    EXPECT_FALSE(pieces.Covers(pair, Vector3::Zero(), Vector3::Zero(), 0.0));
+    ASSERT_LT(calls, 1000000);
+  }
+  EXPECT_GT(calls, 10);
+  EXPECT_LE(most, 200);  // the stride's pairs, each two box tests and a full test
+  EXPECT_TRUE(pieces.valid());
+  EXPECT_FALSE(pieces.building());
+  EXPECT_TRUE(pieces.Covers(pair, Vector3::Zero(), Vector3::Zero(), 0.0));
+  EXPECT_EQ(pieces_count.box_tests, one_count.box_tests);
+  EXPECT_EQ(pieces_count.by_kind[static_cast<int>(QueryKind::kListBuild)],
+            one_count.by_kind[static_cast<int>(QueryKind::kListBuild)]);
+  ASSERT_EQ(pieces.entries().size(), one.entries().size());
+  for (size_t i = 0; i < one.entries().size(); ++i) {
+    EXPECT_EQ(pieces.entries()[i].ip, one.entries()[i].ip) << i;
+    EXPECT_EQ(pieces.entries()[i].is, one.entries()[i].is) << i;
+    EXPECT_EQ(pieces.entries()[i].gap, one.entries()[i].gap) << i;
+  }
+  // Invalidate drops a build under way: nothing more to continue.
+  pieces.BeginBuild(pair, Vector3::Zero(), radius, GetParam());
+  pieces.ContinueBuild([] { return true; }, nullptr);
+  pieces.Invalidate();
+  EXPECT_FALSE(pieces.building());
+  EXPECT_FALSE(pieces.ContinueBuild([] { return false; }, nullptr));
+  EXPECT_FALSE(pieces.valid());
 }
 
 INSTANTIATE_TEST_SUITE_P(LeafAndTwigPairs, CandidatePairsGrain,

@@ -1,0 +1,143 @@
+// PolyDepthOptions::defer_list_builds: warm queries answer without
+// rebuilding their candidate list and leave the rebuild to
+// PolyDepthSolver::PrepareNext (the geometry thread's idle time). Along a
+// slide of a real mesh tool over a real mesh object (bench_pd's
+// fandisk_elephant pair), the deferring solver must give the answers the
+// default solver gives, with no list build inside any Solve, its lists
+// rebuilt by PrepareNext instead, in pieces as small as its caller asks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pd_core/polydepth/polydepth.h"
+#include "tests/pd_core/pair_pd_test_helpers.h"
+#include "tests/pd_core/scaled_mesh_model.h"
+#include "tests/prerequisites.h"
+
+namespace pd {
+namespace {
+
+using Model = std::shared_ptr<const CollisionModel>;
+using test::LoadScaled;
+using test::Pose;
+
+class DeferredListBuilds : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    for (const char* f : {"fandisk.off", "refined_elephant.off"})
+      PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
+    // Scales and the start pose (2 mm deep) as bench_pd makes them.
+    tool = LoadScaled("fandisk.off", 0.034431803204303821);
+    object = LoadScaled("refined_elephant.off", 0.12763984046501484);
+    const Quaternion q(0.74771591051074504, 0.20407979086249584, 0.56654559954783568,
+                       -0.27981858366375667);
+    const Vector3 p(-0.021064379799368926, 0.012639199578282974, -0.01414136732652058);
+    // 1 ms apart: sliding 0.1 m/s along x and turning 20 deg/s.
+    for (int i = 0; i < kPoses; ++i) {
+      const Quaternion q_i(Eigen::AngleAxisd(0.35 * 1e-3 * i, Vector3::UnitZ()) * q.normalized());
+      path.push_back(Pose(p + Vector3(1e-4 * i, 0, 0), q_i));
+    }
+  }
+  static constexpr int kPoses = 240;
+  Model tool, object;
+  std::vector<Isometry3> path;
+};
+
+TEST_F(DeferredListBuilds, SameAnswersWithTheRebuildsOutOfTheQueries) {
+  PolyDepthOptions deferring;
+  deferring.defer_list_builds = true;
+  PolyDepthSolver usual(tool, object), deferred(tool, object, deferring),
+      never_prepared(tool, object, deferring);
+  int usual_builds = 0, prepared_lists = 0, colliding = 0;
+  int64_t deferred_work = 0, never_prepared_work = 0;
+  for (int i = 0; i < kPoses; ++i) {
+    const PenetrationResult a = usual.Solve(path[i], Isometry3::Identity(), true);
+    const PenetrationResult b = deferred.Solve(path[i], Isometry3::Identity(), true);
+    const PenetrationResult c = never_prepared.Solve(path[i], Isometry3::Identity(), true);
+    prepared_lists += deferred.PrepareNext().lists_completed;
+    usual_builds += a.list_builds;
+    colliding += a.in_collision;
+    // No list is built while a deferring solver answers.
+    EXPECT_EQ(b.list_builds, 0) << "pose " << i;
+    EXPECT_EQ(b.work.list_builds, 0) << "pose " << i;
+    EXPECT_EQ(c.list_builds, 0) << "pose " << i;
+    deferred_work += b.box_tests + b.triangle_tests;
+    never_prepared_work += c.box_tests + c.triangle_tests;
+    // The lists only speed the search: the same answers (to round-off).
+    for (const PenetrationResult* r : {&b, &c}) {
+      ASSERT_EQ(r->in_collision, a.in_collision) << "pose " << i;
+      ASSERT_EQ(r->valid, a.valid) << "pose " << i;
+      EXPECT_NEAR(r->depth, a.depth, 1e-12 * (1.0 + a.depth) + 1e-12) << "pose " << i;
+      EXPECT_LE((r->translation_W - a.translation_W).norm(), 1e-12) << "pose " << i;
+    }
+  }
+  // The path is a real slide: mostly in contact, and the usual solver
+  // rebuilt its list along it.
+  EXPECT_GT(colliding, kPoses / 2);
+  EXPECT_GT(usual_builds, 5);
+  // The deferring solver's lists came from PrepareNext, and they pay: the
+  // same solver never prepared (no lists) works harder for the same answers.
+  EXPECT_GT(prepared_lists, 5);
+  EXPECT_LT(deferred_work, never_prepared_work);
+}
+
+TEST_F(DeferredListBuilds, PrepareNextStopsWhenAskedAndGoesOnLater) {
+  PolyDepthOptions deferring;
+  deferring.defer_list_builds = true;
+  PolyDepthSolver usual(tool, object), deferred(tool, object, deferring);
+  int calls_with_work = 0, lists = 0, lists_over_poses = 0;
+  int64_t most = 0;
+  bool paused_at_pose_end = false;
+  for (int i = 0; i < kPoses; ++i) {
+    const PenetrationResult a = usual.Solve(path[i], Isometry3::Identity(), true);
+    const PenetrationResult b = deferred.Solve(path[i], Isometry3::Identity(), true);
+    ASSERT_EQ(b.in_collision, a.in_collision) << "pose " << i;
+    EXPECT_NEAR(b.depth, a.depth, 1e-12 * (1.0 + a.depth) + 1e-12) << "pose " << i;
+    // A caller that always asks to stop: a few dozen box tests per call,
+    // at most 12 calls per pose (a few hundred tests); a build spreads over
+    // poses.
+    bool done = false;
+    for (int k = 0; k < 12 && !done; ++k) {
+      const PolyDepthSolver::Preparation p = deferred.PrepareNext([] { return true; });
+      most = std::max(most, p.box_tests);
+      calls_with_work += p.box_tests > 0;
+      lists += p.lists_completed;
+      if (p.lists_completed > 0 && paused_at_pose_end && k == 0) ++lists_over_poses;
+      done = p.done;
+    }
+    paused_at_pose_end = !done;
+  }
+  EXPECT_GT(calls_with_work, 100);
+  EXPECT_LE(most, 200);
+  EXPECT_GT(lists, 3);             // builds still complete, piece by piece,
+  EXPECT_GT(lists_over_poses, 0);  // some of them over a Solve in between
+  // And with nothing pending a call does nothing.
+  while (!deferred.PrepareNext().done) {
+  }
+  const PolyDepthSolver::Preparation idle = deferred.PrepareNext([] { return true; });
+  EXPECT_TRUE(idle.done);
+  EXPECT_EQ(idle.box_tests, 0);
+}
+
+TEST_F(DeferredListBuilds, ResetWarmStartDropsTheBuildUnderWay) {
+  PolyDepthOptions deferring;
+  deferring.defer_list_builds = true;
+  PolyDepthSolver deferred(tool, object, deferring);
+  bool pending = false;
+  for (int i = 0; i < kPoses && !pending; ++i) {
+    deferred.Solve(path[i], Isometry3::Identity(), true);
+    pending = !deferred.PrepareNext([] { return true; }).done;
+  }
+  ASSERT_TRUE(pending) << "no build was deferred along the path";
+  deferred.ResetWarmStart();
+  const PolyDepthSolver::Preparation p = deferred.PrepareNext();
+  EXPECT_TRUE(p.done);
+  EXPECT_EQ(p.box_tests, 0);
+  EXPECT_EQ(p.lists_completed, 0);
+}
+
+}  // namespace
+}  // namespace pd
