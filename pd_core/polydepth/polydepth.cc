@@ -225,6 +225,19 @@ struct PolyDepthSolver::Impl {
     return ListLeafPairs() > kTwigListLeafPairs ? CandidatePairs::Grain::kTwigPairs
                                                 : CandidatePairs::Grain::kLeafPairs;
   }
+  // The deferred build under way, completed in this query and put in use:
+  // the caller's idle time did not suffice and this query needs it (going
+  // on without a list after a slow query made the next ones slow too: the
+  // idle time of each went to nothing, a cascade on cow_armadillo's path).
+  void FinishDeferredBuild(const ModelPair& pair) {
+    const auto t0 = std::chrono::steady_clock::now();
+    next_candidates.ContinueBuild([] { return false; }, pair.counters);
+    std::swap(candidates, next_candidates);
+    next_candidates.Invalidate();
+    ++list_builds;
+    list_build_us +=
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
   void BuildList(const ModelPair& pair, const Vector3& q_center_S, double radius) {
     const auto t0 = std::chrono::steady_clock::now();
     candidates.Build(pair, q_center_S, radius, NextGrain());
@@ -579,11 +592,15 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   bool build_pending = false;
   Vector3 build_center = Vector3::Zero(), build_lead = Vector3::Zero();
   double build_radius = 0.0;
+  Vector3 list_center = Vector3::Zero();  // where the query's list must reach, and how far
+  double list_need = 0.0;
   s.start_wanted = s.follow_wanted = false;
   if (warm && (s.has_previous || s.has_previous_free)) {
     const double need =
         (have_prediction ? 0.0 : 2.0 * motion) + kListIterationRoom * contact_distance;
     const Vector3 center = have_prediction ? q_pred : s.previous_q_S;
+    list_center = center;
+    list_need = need;
     if (need > kListMaxNeed * options_.candidate_radius * size) {
       // A jump: a list wide enough to cover it would hold a large part of
       // both meshes' leaf pairs (one such build took minutes on 52k x 75k
@@ -621,9 +638,13 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   result.in_collision = InCollision(pair, Vector3::Zero(), &s.query_witness);
   if (result.in_collision && build_pending) {
     if (options_.defer_list_builds) {
-      s.start_wanted = true;
-      s.wanted_lead = build_lead;
-      s.wanted_radius = build_radius;
+      if (s.next_candidates.BuildWillCover(pair, list_center, list_need)) {
+        s.FinishDeferredBuild(pair);
+      } else {
+        s.start_wanted = true;
+        s.wanted_lead = build_lead;
+        s.wanted_radius = build_radius;
+      }
     } else {
       s.BuildList(pair, build_center, build_radius);
     }

@@ -118,8 +118,10 @@ struct PolyDepthOptions {
   // 1e-15 relative: round-off of constraints found in another order). Their
   // p99 work fell 10-65% there (haptic_work: bull_bunny 3996 -> 1407
   // tests, fandisk_elephant 8422 -> 5029), their max work did not (basin
-  // switches: out-projections and localisations). A caller that never calls
-  // PrepareNext gets no new lists: slower answers, the same ones.
+  // switches: out-projections and localisations). A build PrepareNext has
+  // not completed when a query needs it is completed by that query (booked
+  // to it): a caller whose idle time runs short, or who never calls
+  // PrepareNext, gets each list one query later than without deferral.
   bool defer_list_builds = false;
   uint64_t seed = 12345;
 };
