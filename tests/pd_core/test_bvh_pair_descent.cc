@@ -51,6 +51,26 @@ bool Overlap(const BvhNode& a, const BvhNode& b) {
   return ((a.center_M - b.center_M).cwiseAbs() - a.half_B - b.half_B).maxCoeff() <= 0.0;
 }
 
+// The leaf pairs whose boxes overlap, in the order one depth-first descent
+// visits them.
+std::vector<std::pair<int, int>> OverlappingLeafPairsInOrder(const Bvh& a, const Bvh& b,
+                                                             ProximityCounters* counters) {
+  std::vector<std::pair<int, int>> visited;
+  DescendBvhPair(
+      a, b,
+      [](const BvhNode& x, const BvhNode& y, double* key) {
+        *key = 0.0;
+        return Overlap(x, y);
+      },
+      [](double) { return true; },
+      [&](int ip, int is) {
+        visited.push_back({ip, is});
+        return true;
+      },
+      counters);
+  return visited;
+}
+
 TEST(BvhPairDescent, DepthIsMeasuredFromTheLinks) {
   EXPECT_EQ(Caterpillar(1, 0.0).depth(), 1);
   EXPECT_EQ(Caterpillar(2, 0.0).depth(), 2);
@@ -61,20 +81,10 @@ TEST(BvhPairDescent, TreesDeeperThanTheFixedStackVisitExactlyTheOverlappingLeafP
   // 300 + 300 levels: needs a stack of ~600 entries, more than the fixed one.
   const Bvh a = Caterpillar(300, 0.0), b = Caterpillar(300, 0.5);
   ASSERT_GT(a.depth() + b.depth() + 1, kDescentStackCapacity);
-  std::set<std::pair<int, int>> visited;
   ProximityCounters counters;
-  DescendBvhPair(
-      a, b,
-      [](const BvhNode& x, const BvhNode& y, double* key) {
-        *key = 0.0;
-        return Overlap(x, y);
-      },
-      [](double) { return true; },
-      [&](int ip, int is) {
-        EXPECT_TRUE(visited.insert({ip, is}).second) << "leaf pair visited twice";
-        return true;
-      },
-      &counters);
+  const std::vector<std::pair<int, int>> in_order = OverlappingLeafPairsInOrder(a, b, &counters);
+  const std::set<std::pair<int, int>> visited(in_order.begin(), in_order.end());
+  EXPECT_EQ(visited.size(), in_order.size()) << "a leaf pair visited twice";
   std::set<std::pair<int, int>> expected;
   for (int i = 0; i < static_cast<int>(a.nodes().size()); ++i)
     for (int j = 0; j < static_cast<int>(b.nodes().size()); ++j)
@@ -235,20 +245,8 @@ TEST(BvhPairDescent, ADescentInPiecesVisitsWhatOneDescentVisitsInTheSameOrder) {
   for (const auto& [a, b] : {std::pair(Caterpillar(300, 0.0), Caterpillar(300, 0.5)),
                              std::pair(Balanced(6, 1.0), Balanced(6, 0.7)),
                              std::pair(Balanced(5, 0.0), Balanced(5, 0.0))}) {
-    std::vector<std::pair<int, int>> whole;
     ProximityCounters whole_count;
-    DescendBvhPair(
-        a, b,
-        [](const BvhNode& x, const BvhNode& y, double* key) {
-          *key = 0.0;
-          return Overlap(x, y);
-        },
-        [](double) { return true; },
-        [&](int ip, int is) {
-          whole.push_back({ip, is});
-          return true;
-        },
-        &whole_count);
+    const std::vector<std::pair<int, int>> whole = OverlappingLeafPairsInOrder(a, b, &whole_count);
     ASSERT_FALSE(whole.empty());
     for (int stride : {1, 7, 1000000}) {
       ProximityCounters count;

@@ -23,6 +23,7 @@
 #include "pd_core/proximity/model_pair.h"
 #include "pd_core/proximity/triangle_geometry.h"
 #include "tests/prerequisites.h"
+#include "tests/pd_core/fandisk_on_elephant.h"
 #include "tests/pd_core/scaled_mesh_model.h"
 
 namespace pd {
@@ -75,13 +76,11 @@ TrianglePairs PairsWithin(const ModelPair& pair, const Vector3& q_S, double dist
 // 2 mm deep in the object), tool and object scaled as there; lists of the
 // radius and queries of the distance PolyDepth uses (3.6e-3 and 1e-4 of the
 // pair's size).
-class CandidatePairsFandiskOnElephant : public ::testing::Test {
+class CandidatePairsFandiskOnElephant : public test::FandiskOnElephant {
  protected:
   void SetUp() override {
-    for (const char* f : {"fandisk.off", "refined_elephant.off"})
-      PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
-    tool = LoadScaled("fandisk.off", 0.034431803204303821);
-    object = LoadScaled("refined_elephant.off", 0.12763984046501484);
+    FandiskOnElephant::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
     const double size = PairAt(Vector3::Zero(), 0.0, Vector3::UnitZ()).size();
     radius = 3.6e-3 * size;
     distance = 1e-4 * size;
@@ -89,15 +88,11 @@ class CandidatePairsFandiskOnElephant : public ::testing::Test {
   // The pose moved by p_W and turned by turn_rad about axis_W.
   ModelPair PairAt(const Vector3& p_W, double turn_rad, const Vector3& axis_W) const {
     Isometry3 X_WP = Isometry3::Identity();
-    X_WP.linear() = (Eigen::AngleAxisd(turn_rad, axis_W.normalized()) *
-                     Quaternion(0.74771591051074504, 0.20407979086249584, 0.56654559954783568,
-                                -0.27981858366375667).normalized())
-                        .toRotationMatrix();
-    X_WP.translation() =
-        Vector3(-0.021064379799368926, 0.012639199578282974, -0.01414136732652058) + p_W;
+    X_WP.linear() =
+        (Eigen::AngleAxisd(turn_rad, axis_W.normalized()) * Pose1200Rotation()).toRotationMatrix();
+    X_WP.translation() = Pose1200Position() + p_W;
     return ModelPair(*tool, *object, X_WP, Isometry3::Identity());
   }
-  std::shared_ptr<const CollisionModel> tool, object;
   double radius = 0.0, distance = 0.0;
 };
 

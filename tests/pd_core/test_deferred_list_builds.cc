@@ -14,35 +14,25 @@
 
 #include "pd_core/polydepth/polydepth.h"
 #include "tests/pd_core/pair_pd_test_helpers.h"
-#include "tests/pd_core/scaled_mesh_model.h"
-#include "tests/prerequisites.h"
+#include "tests/pd_core/fandisk_on_elephant.h"
 
 namespace pd {
 namespace {
 
-using Model = std::shared_ptr<const CollisionModel>;
-using test::LoadScaled;
 using test::Pose;
 
-class DeferredListBuilds : public ::testing::Test {
+class DeferredListBuilds : public test::FandiskOnElephant {
  protected:
   void SetUp() override {
-    for (const char* f : {"fandisk.off", "refined_elephant.off"})
-      PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
-    // Scales and the start pose (2 mm deep) as bench_pd makes them.
-    tool = LoadScaled("fandisk.off", 0.034431803204303821);
-    object = LoadScaled("refined_elephant.off", 0.12763984046501484);
-    const Quaternion q(0.74771591051074504, 0.20407979086249584, 0.56654559954783568,
-                       -0.27981858366375667);
-    const Vector3 p(-0.021064379799368926, 0.012639199578282974, -0.01414136732652058);
-    // 1 ms apart: sliding 0.1 m/s along x and turning 20 deg/s.
+    FandiskOnElephant::SetUp();
+    // From pose 1200, 1 ms apart: sliding 0.1 m/s along x and turning 20 deg/s.
     for (int i = 0; i < kPoses; ++i) {
-      const Quaternion q_i(Eigen::AngleAxisd(0.35 * 1e-3 * i, Vector3::UnitZ()) * q.normalized());
-      path.push_back(Pose(p + Vector3(1e-4 * i, 0, 0), q_i));
+      const Quaternion q_i(Eigen::AngleAxisd(0.35 * 1e-3 * i, Vector3::UnitZ()) *
+                           Pose1200Rotation());
+      path.push_back(Pose(Pose1200Position() + Vector3(1e-4 * i, 0, 0), q_i));
     }
   }
   static constexpr int kPoses = 240;
-  Model tool, object;
   std::vector<Isometry3> path;
 };
 
