@@ -204,13 +204,27 @@ struct PolyDepthSolver::Impl {
   bool list_follows_iterates = false;  // this query may still move the list to an iterate
   // PolyDepthOptions::defer_list_builds: the list being built in
   // PrepareNext (it replaces `candidates` once complete), and the build the
-  // current query asks for: one around its answer (shifted by
-  // wanted_lead, radius wanted_radius) where the list did not cover the
-  // query, or one of the usual radius around it where an iterate left it.
+  // current query asks for: around its answer shifted by wanted_lead, of
+  // radius wanted_radius (the first ask of a query stands: where the list
+  // did not cover the query, else where an iterate left it).
   CandidatePairs next_candidates;
-  bool start_wanted = false, follow_wanted = false;
+  bool build_wanted = false;
   Vector3 wanted_lead = Vector3::Zero();
   double wanted_radius = 0.0;
+  void WantBuild(const Vector3& lead, double radius) {
+    if (build_wanted) return;
+    build_wanted = true;
+    wanted_lead = lead;
+    wanted_radius = radius;
+  }
+  // Goes on with the deferred build; once complete it replaces the list in
+  // use. Returns whether it completed.
+  bool AdvanceDeferredBuild(const std::function<bool()>& pause, ProximityCounters* counters) {
+    if (!next_candidates.ContinueBuild(pause, counters)) return false;
+    std::swap(candidates, next_candidates);
+    next_candidates.Invalidate();
+    return true;
+  }
   int list_builds = 0;          // this query's list builds and their wall time (us)
   double list_build_us = 0.0;
   // About how many leaf pairs the list holds (0 when there is none).
@@ -231,9 +245,7 @@ struct PolyDepthSolver::Impl {
   // idle time of each went to nothing, a cascade on cow_armadillo's path).
   void FinishDeferredBuild(const ModelPair& pair) {
     const auto t0 = std::chrono::steady_clock::now();
-    next_candidates.ContinueBuild([] { return false; }, pair.counters);
-    std::swap(candidates, next_candidates);
-    next_candidates.Invalidate();
+    AdvanceDeferredBuild([] { return false; }, pair.counters);
     ++list_builds;
     list_build_us +=
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -314,12 +326,13 @@ struct PolyDepthSolver::Impl {
     if (!list_follows_iterates || !candidates.valid() ||
         candidates.Covers(pair, q_S, q_S, kListIterationRoom * contact_distance))
       return;
+    const double radius = opt.candidate_radius * size + kListIterationRoom * contact_distance;
     if (opt.defer_list_builds) {  // after the answer, around it
-      follow_wanted = true;
+      WantBuild(Vector3::Zero(), radius);
       list_follows_iterates = false;
       return;
     }
-    BuildList(pair, q_S, opt.candidate_radius * size + kListIterationRoom * contact_distance);
+    BuildList(pair, q_S, radius);
     list_follows_iterates = false;
   }
 
@@ -475,12 +488,8 @@ PolyDepthSolver::Preparation PolyDepthSolver::PrepareNext(const std::function<bo
   const auto t0 = std::chrono::steady_clock::now();
   ProximityCounters counters;
   const std::function<bool()> never = [] { return false; };
-  p.done = s.next_candidates.ContinueBuild(pause ? pause : never, &counters);
-  if (p.done) {
-    std::swap(s.candidates, s.next_candidates);
-    s.next_candidates.Invalidate();
-    p.lists_completed = 1;
-  }
+  p.done = s.AdvanceDeferredBuild(pause ? pause : never, &counters);
+  p.lists_completed = p.done ? 1 : 0;
   p.box_tests = counters.box_tests;
   p.time_us =
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -594,7 +603,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   double build_radius = 0.0;
   Vector3 list_center = Vector3::Zero();  // where the query's list must reach, and how far
   double list_need = 0.0;
-  s.start_wanted = s.follow_wanted = false;
+  s.build_wanted = false;
   if (warm && (s.has_previous || s.has_previous_free)) {
     const double need =
         (have_prediction ? 0.0 : 2.0 * motion) + kListIterationRoom * contact_distance;
@@ -641,9 +650,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (s.next_candidates.BuildWillCover(pair, list_center, list_need)) {
         s.FinishDeferredBuild(pair);
       } else {
-        s.start_wanted = true;
-        s.wanted_lead = build_lead;
-        s.wanted_radius = build_radius;
+        s.WantBuild(build_lead, build_radius);
       }
     } else {
       s.BuildList(pair, build_center, build_radius);
@@ -1056,20 +1063,13 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     s.previous_n_S = s.best_q_S / std::max(s.best_norm, 1e-300);
     s.previous_X_SP = pair.X_SP;
     s.previous_constraints = s.constraints;
-    if (s.start_wanted || s.follow_wanted) {
-      // Deferred (PrepareNext): around the answer, which the query did not
-      // know when it found its list short. A build under way that will
-      // cover the answer goes on.
-      const double room = kListIterationRoom * contact_distance;
-      if (!s.next_candidates.BuildWillCover(pair, s.best_q_S, room)) {
-        if (s.start_wanted)
-          s.next_candidates.BeginBuild(pair, s.best_q_S + s.wanted_lead, s.wanted_radius,
-                                       s.NextGrain());
-        else
-          s.next_candidates.BeginBuild(pair, s.best_q_S, options_.candidate_radius * size + room,
-                                       s.NextGrain());
-      }
-    }
+    // Deferred (PrepareNext): around the answer, which the query did not
+    // know when it found its list short. A build under way that will cover
+    // the answer goes on.
+    if (s.build_wanted &&
+        !s.next_candidates.BuildWillCover(pair, s.best_q_S, kListIterationRoom * contact_distance))
+      s.next_candidates.BeginBuild(pair, s.best_q_S + s.wanted_lead, s.wanted_radius,
+                                   s.NextGrain());
   } else {
     s.has_previous = false;
     s.previous_constraints.clear();

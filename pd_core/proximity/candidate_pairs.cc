@@ -41,11 +41,7 @@ void CandidatePairs::BeginBuild(const ModelPair& pair, const Vector3& q_center_S
 
 bool CandidatePairs::BuildWillCover(const ModelPair& pair, const Vector3& q_S,
                                     double extra) const {
-  if (!building() || probe_ != &pair.P || scene_ != &pair.S) return false;
-  double rot;
-  Vector3 shift;
-  Motion(pair, &rot, &shift);
-  return (shift + q_S).norm() + rot + extra < radius_;
+  return building_ && DisplacementFromBuild(pair, q_S) + extra < radius_;
 }
 
 bool CandidatePairs::ContinueBuild(const std::function<bool()>& pause,
@@ -132,13 +128,16 @@ bool CandidatePairs::MotionSinceBuild(const ModelPair& pair, const Vector3& q_S,
   return true;
 }
 
-double CandidatePairs::Displacement(const ModelPair& pair, const Vector3& q_S) const {
-  if (!valid_ || probe_ != &pair.P || scene_ != &pair.S)
-    return std::numeric_limits<double>::infinity();
+double CandidatePairs::DisplacementFromBuild(const ModelPair& pair, const Vector3& q_S) const {
+  if (probe_ != &pair.P || scene_ != &pair.S) return std::numeric_limits<double>::infinity();
   double rot;
   Vector3 shift;
   Motion(pair, &rot, &shift);
   return (shift + q_S).norm() + rot;
+}
+
+double CandidatePairs::Displacement(const ModelPair& pair, const Vector3& q_S) const {
+  return valid_ ? DisplacementFromBuild(pair, q_S) : std::numeric_limits<double>::infinity();
 }
 
 double CandidatePairs::CoveredFraction(const ModelPair& pair, const Vector3& q_from_S,

@@ -126,6 +126,9 @@ class CandidatePairs {
  private:
   // Rotation part of the displacement bound (m) and the centre's motion.
   void Motion(const ModelPair& pair, double* rotation_bound, Vector3* center_shift_S) const;
+  // Displacement from the build configuration whether or not the list is
+  // complete yet (+inf when it is not this pair's).
+  double DisplacementFromBuild(const ModelPair& pair, const Vector3& q_S) const;
   bool valid_ = false;
   Grain grain_ = Grain::kLeafPairs;
   RelativePose X_SP_;
