@@ -172,6 +172,7 @@ RendererCounts HapticRenderer::counts() const {
   c.pd_held_ticks = local.held_ticks;
   c.model_updates = local.updates;
   c.model_stale_ticks = local.stale_ticks;
+  c.model_outdated_answers = local.outdated_answers;
   c.geometry_async_ticks = async_ticks_;
   c.geometry_switches = switches_;
   c.tool_nonfinite = tool_.nonfinite_steps();

@@ -53,6 +53,7 @@ struct RendererCounts {
   int64_t pd_held_ticks = 0;     // ... of which rendered the pair's last valid contact (hold)
   int64_t model_updates = 0;     // geometry answers taken (the PD update count)
   int64_t model_stale_ticks = 0; // ticks with the contact model past contact.model_max_age_ms
+  int64_t model_outdated_answers = 0;  // geometry answers older than the model in use, dropped
   int64_t geometry_async_ticks = 0;  // ticks rendered from the geometry thread's answers
   int64_t geometry_switches = 0;     // auto: changes between in-tick and threaded geometry
   int64_t tool_nonfinite = 0;   // tool steps that went non-finite (tool stopped)

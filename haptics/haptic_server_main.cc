@@ -96,7 +96,7 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 "wake_latency_p50_us=%.1f wake_latency_p99_us=%.1f wake_latency_max_us=%.1f "
                 "geometry_thread=%d pd_update_rate_hz=%.1f model_age_p50_ticks=%.0f "
                 "model_age_p99_ticks=%.0f model_age_max_ticks=%.0f pd_held_ticks=%lld "
-                "model_stale_ticks=%lld geometry_async_ticks=%lld pose_triggered=%d ticks_by_pose=%lld "
+                "model_stale_ticks=%lld model_outdated_answers=%lld geometry_async_ticks=%lld pose_triggered=%d ticks_by_pose=%lld "
                 "ticks_by_deadline=%lld",
                 static_cast<long long>(s.ticks), s.elapsed_s, s.achieved_rate_hz,
                 static_cast<long long>(s.deadline_misses), s.jitter_p99_us, s.compute_p99_us,
@@ -128,6 +128,7 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
                 s.model_age_p50_ticks, s.model_age_p99_ticks, s.model_age_max_ticks,
                 static_cast<long long>(s.renderer.pd_held_ticks),
                 static_cast<long long>(s.renderer.model_stale_ticks),
+                static_cast<long long>(s.renderer.model_outdated_answers),
                 static_cast<long long>(s.renderer.geometry_async_ticks), s.pose_triggered ? 1 : 0,
                 static_cast<long long>(s.ticks_by_pose), static_cast<long long>(s.ticks_by_deadline));
   return line;

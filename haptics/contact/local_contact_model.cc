@@ -86,6 +86,10 @@ void LocalContactModel::Evaluate(const RigidState& tool, int64_t tick, ContactSu
 const ContactSummary& LocalContactModel::Update(const ContactSnapshot* answer, const RigidState& tool,
                                                 int64_t tick, int32_t* flags) {
   terms_ = static_cast<int64_t>(active_.size());
+  if (answer != nullptr && model_tick_ >= 0 && answer->request_tick <= model_tick_) {
+    ++counts_.outdated_answers;
+    answer = nullptr;
+  }
   if (answer != nullptr) {
     if (options_.blend && model_tick_ >= 0) {
       // What was rendered, at the current state, before the replacement.

@@ -46,6 +46,7 @@ struct LocalContactCounts {
   int64_t dropped_ticks = 0;    // ticks with an invalid pair and nothing to hold
   int64_t stale_ticks = 0;      // ticks with the models past max age
   int64_t blend_ticks = 0;      // ticks with a replacement offset decaying
+  int64_t outdated_answers = 0; // answers for a pose older than the models in use: dropped
 };
 
 class LocalContactModel {
@@ -55,7 +56,10 @@ class LocalContactModel {
   LocalContactModel(int num_objects, const ContactConfig& params, const LocalContactOptions& options);
 
   // Takes `answer` (nullptr: no new one this tick) and evaluates the models
-  // at `tool` for servo tick `tick`. ORs kFlagPdInvalid, kFlagContactHeld and
+  // at `tool` for servo tick `tick`. An answer whose request tick is not
+  // newer than the models in use is dropped and counted (outdated_answers):
+  // a worker's answer left untaken while the queries ran in the tick must
+  // not bring back the contact of a pose seconds old. ORs kFlagPdInvalid, kFlagContactHeld and
   // kFlagModelStale into *flags. The reference stays valid until the next call.
   const ContactSummary& Update(const ContactSnapshot* answer, const RigidState& tool, int64_t tick,
                                int32_t* flags);

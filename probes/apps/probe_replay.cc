@@ -188,9 +188,11 @@ int main(int argc, char** argv) {
     }
   }
 
+  // Real-time only while sending (probes/transport/realtime.h).
+  std::optional<probes::ScopedRealtime> sending_realtime;
   if (realtime) {
-    std::string why;
-    if (!probes::TryRealtime(80, &why)) std::cerr << "probe_replay: warning: " << why << "\n";
+    sending_realtime.emplace(80);
+    if (!sending_realtime->granted()) std::cerr << "probe_replay: warning: " << sending_realtime->why() << "\n";
   }
   const int64_t start_ns = probes::MonotonicNs() + 5'000'000;
   const double t_first = trajectory.front().t;
@@ -212,6 +214,7 @@ int main(int argc, char** argv) {
     haptics_msgs::probe_pose_t msg = probes::MakePoseMessage(trajectory[i], seq, send_us, sender);
     if (lcm.publish(pose_channel, &msg) != 0) ++publish_failures;
   }
+  sending_realtime.reset();
 
   // Grace period: stop early once every pose has its answer.
   const int64_t grace_end = probes::MonotonicNs() + static_cast<int64_t>(grace * 1e9);

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <lcm/lcm-cpp.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,9 +49,10 @@ int Publish(const probes::Trajectory& trajectory, const std::string& url,
     std::cerr << "probe_sim: cannot initialise LCM with URL '" << url << "'\n";
     return 2;
   }
+  std::optional<probes::ScopedRealtime> sending_realtime;  // while publishing only
   if (realtime) {
-    std::string why;
-    if (!probes::TryRealtime(80, &why)) std::cerr << "probe_sim: warning: " << why << "\n";
+    sending_realtime.emplace(80);
+    if (!sending_realtime->granted()) std::cerr << "probe_sim: warning: " << sending_realtime->why() << "\n";
   }
   std::fprintf(stderr, "probe_sim: sender %s\n", sender.Describe().c_str());
   // Absolute deadlines from one start time: lateness never accumulates.

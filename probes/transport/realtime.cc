@@ -18,4 +18,21 @@ bool TryRealtime(int priority, std::string* why) {
   return true;
 }
 
+ScopedRealtime::ScopedRealtime(int priority) {
+  sched_param previous{};
+  if (const int err = pthread_getschedparam(pthread_self(), &previous_policy_, &previous); err != 0) {
+    why_ = std::string("pthread_getschedparam: ") + std::strerror(err);
+    return;
+  }
+  previous_priority_ = previous.sched_priority;
+  granted_ = TryRealtime(priority, &why_);
+}
+
+ScopedRealtime::~ScopedRealtime() {
+  if (!granted_) return;
+  sched_param previous{};
+  previous.sched_priority = previous_priority_;
+  pthread_setschedparam(pthread_self(), previous_policy_, &previous);  // lowering is always allowed
+}
+
 }  // namespace probes

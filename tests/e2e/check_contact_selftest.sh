@@ -2,7 +2,8 @@
 # Self-test of check_contact on small synthetic result CSVs (no network):
 # the contact rules must pass on a plausible run and fail on a wrong force
 # direction, a force in free space, a missing contact phase, a non-finite
-# answer and a force over the device limit. With PD_E2E_TIMING_RELAXED the
+# answer and a force over the device limit; a force right after a stall of
+# the sender or of the server (the device jumps) is left out. With PD_E2E_TIMING_RELAXED the
 # same contact rules are still enforced (only rows right after a late answer
 # are left out).
 #   check_contact_selftest.sh CHECK_CONTACT WORK_DIR
@@ -12,7 +13,7 @@ mkdir -p "$work"
 header="seq,t,send_utime,x,y,z,qw,qx,qy,qz,answered,answers,fx,fy,fz,tx,ty,tz,flags,penetration_depth,contact_count,latency_us"
 
 cat >"$work/expect.yaml" <<'YAML'
-skip_after_send_stall: {late_ms: 2, settle_s: 0.002}
+skip_after_stall: {late_ms: 2, settle_s: 0.002}
 max_force_N: 12
 max_torque_Nm: 0.2
 rules:
@@ -38,6 +39,10 @@ make_csv() {
     local z="$1" fx="$2" fy="$3" fz="$4" fl="$5" late="$6"; shift 6
     local latency=100
     [[ "$i" == "${LATE_ANSWER_ROW:-}" ]] && latency=$LATE_ANSWER_US
+    if [[ " ${UNANSWERED_ROWS:-} " == *" $i "* ]]; then  # superseded by the server: no answer
+      echo "$i,$(printf '%.3f' "$i"e-3),$((1000000 + 1000 * i + late)),0,0,$z,1,0,0,0,0,0,,,,,,,,,," >>"$out"
+      i=$((i + 1)); continue
+    fi
     echo "$i,$(printf '%.3f' "$i"e-3),$((1000000 + 1000 * i + late)),0,0,$z,1,0,0,0,1,1,$fx,$fy,$fz,0,0,0,$fl,0,0,$latency" >>"$out"
     i=$((i + 1))
   done
@@ -70,6 +75,15 @@ expect fail force_in_free_space "$work/sticky.csv"
 # The same force right after a pose sent 5 ms late is a catch-up transient.
 make_csv "$work/stall.csv" $free 0.03 0 0 2 0 5000  0.02 0 0 0 0 0  0.02 0 0 0 0 0 $press
 expect pass force_after_send_stall_skipped "$work/stall.csv"
+# A stalled server wakes, answers the newest pose and leaves the two before
+# it unanswered: the device jumped 3 ms of motion, and the coupling pulls the
+# tool after it. That force right after the jump is left out; after a single
+# superseded pose (2 ms, within late_ms) it is not.
+jump="0.03 0 0 0 0 0  0.03 0 0 0 0 0  0.03 0 0 2 0 0  0.02 0 0 0 0 0  0.02 0 0 0 0 0"
+UNANSWERED_ROWS="3 4" make_csv "$work/server_jump.csv" $free $jump $press
+expect pass force_after_server_jump_skipped "$work/server_jump.csv"
+UNANSWERED_ROWS="4" make_csv "$work/one_superseded.csv" $free $jump $press
+expect fail force_after_one_superseded_pose "$work/one_superseded.csv"
 make_csv "$work/nocontact.csv" $free $free
 expect fail contact_phase_missing "$work/nocontact.csv"
 make_csv "$work/engaging.csv" $free $press 0.004 0 0 0.1 32 0

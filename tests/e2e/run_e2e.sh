@@ -21,6 +21,7 @@
 # haptic_server renders at a fixed rate from the newest pose, so when two
 # poses arrive within one tick it drops the older (poses_dropped); up to
 # MAX_SUPERSEDED (default 0.2) of the poses may go unanswered that way.
+# The haptic server's contact model must never go stale (model_stale_ticks).
 set -euo pipefail
 HERE="$(cd "$(dirname "$0")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
@@ -93,6 +94,22 @@ echo "run_e2e: unanswered $unanswered of $sent; server dropped $dropped, never r
 if ((unanswered < accounted || unanswered > accounted + missed)); then
   echo "run_e2e: FAIL: $unanswered unanswered poses but the server accounts for $accounted" >&2
   exit 1
+fi
+
+# The contact model must never go stale (contact.model_max_age_ms): a stale
+# model ramps the contact out, and the wall goes soft. The replay sends at
+# SCHED_FIFO, but only while sending, so its summaries and plot do not
+# starve the server's normal-priority geometry thread after the session.
+# (Not under PD_E2E_TIMING_RELAXED: a sanitized PolyDepth query is that slow.)
+if [[ "$server" == haptic && -z "${PD_E2E_TIMING_RELAXED:-}" ]]; then
+  stale=$(grep -o 'model_stale_ticks=[0-9]*' <<<"$line" | cut -d= -f2 || true)
+  age_max=$(grep -o 'model_age_max_ticks=[0-9]*' <<<"$line" | cut -d= -f2 || true)
+  [[ -n "$stale" ]] || { echo "run_e2e: FAIL: no model_stale_ticks in the server's last line: $line" >&2; exit 1; }
+  echo "run_e2e: contact model: stale ticks $stale, oldest ${age_max:-?} ticks"
+  if ((stale > 0)); then
+    echo "run_e2e: FAIL: the contact model was stale on $stale ticks (geometry thread starved or stuck)" >&2
+    exit 1
+  fi
 fi
 
 if ((bad_input)); then

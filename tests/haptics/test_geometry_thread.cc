@@ -343,6 +343,43 @@ TEST(GeometryThread, NoEnergyGainOverPressHoldReleaseWithGeometryAt50Hz) {
   EXPECT_LE(cycle.work, 0.01 * stored);
 }
 
+// The worker's last answer can be left untaken when the queries go back into
+// the tick (auto mode's switch, or the loop stopping its thread). When they
+// leave it again, that answer is for a pose hundreds of ticks old: it must
+// be dropped (counted), never rendered as the newest contact, which aged the
+// model past its limit at once (e2e box_on_box: a model 5641 ticks old).
+TEST(GeometryWorker, AnAnswerLeftUntakenIsNotRenderedWhenTheQueriesLeaveTheTickAgain) {
+  AsyncBoxOnBox box;
+  HapticRenderer& renderer = box.renderer;
+  ASSERT_TRUE(renderer.geometry_async());
+  double t = 0.0;
+  int64_t seq = 0;
+  int32_t flags = 0;
+  auto tick_at = [&](double z) {
+    const PoseSample pose = test::MakePose(++seq, Vector3(0, 0, z));
+    flags |= renderer.Tick(t, &pose).flags;
+    t += renderer.dt();
+  };
+  tick_at(0.007);                          // posts a pose 3 mm into the table
+  renderer.geometry_worker().RunOnce();    // answered; nobody takes it
+  renderer.set_geometry_worker_running(false);
+  ASSERT_FALSE(renderer.geometry_async());
+  for (int i = 0; i < 300; ++i) tick_at(0.03);  // in the tick, 2 cm above the table
+  ASSERT_EQ(renderer.model_age_ticks(), 0);
+  renderer.set_geometry_worker_running(true);
+  ASSERT_TRUE(renderer.geometry_async());
+  tick_at(0.03);  // takes the answer left untaken 301 ticks ago
+  EXPECT_EQ(renderer.counts().model_outdated_answers, 1);
+  EXPECT_EQ(renderer.model_age_ticks(), 1);  // still the last in-tick answer
+  EXPECT_EQ(flags & kFlagModelStale, 0);
+  EXPECT_EQ(renderer.counts().model_stale_ticks, 0);
+  renderer.geometry_worker().RunOnce();
+  tick_at(0.03);
+  EXPECT_EQ(renderer.model_age_ticks(), 1);  // the worker's fresh answer is taken
+  EXPECT_EQ(renderer.counts().model_outdated_answers, 1);
+  renderer.set_geometry_worker_running(false);
+}
+
 TEST(GeometryThread, ModelAgesOutWhenTheGeometryThreadStops) {
   SceneConfig config = ThreadedBoxOnBox();
   config.contact.model_max_age_s = 0.1;

@@ -7,7 +7,8 @@
 //    current pose, fading over invalid_hold_ms, flagged and counted;
 //  - a new answer replaces the model without a jump larger than the device's
 //    rate limit per tick;
-//  - a model that is not refreshed ages out (ramps to zero, flagged).
+//  - a model that is not refreshed ages out (ramps to zero, flagged);
+//  - an answer for a pose not newer than the models in use is dropped.
 #include "haptics/contact/local_contact_model.h"
 
 #include <gtest/gtest.h>
@@ -137,6 +138,7 @@ TEST(LocalContactModel, InvalidAnswerHoldsTheLastValidContactDecayingFlaggedAndC
   // The solver struggles: the same pair, answer not verified. The tool goes
   // 1 mm deeper meanwhile: the held wall pushes harder, not less.
   answer.pairs[0].status = PairContactModel::Status::kInvalid;
+  answer.request_tick = 2;  // each answer is for a newer pose
   tool.X_W.translation().z() = 0.007;
   flags = 0;
   const ContactSummary& held = local.Update(&answer, tool, 2, &flags);
@@ -148,7 +150,10 @@ TEST(LocalContactModel, InvalidAnswerHoldsTheLastValidContactDecayingFlaggedAndC
   EXPECT_EQ(local.counts().invalid_answers, 1);
   EXPECT_EQ(local.counts().held_ticks, 1);
   // Still invalid 50 ticks later: half the force; after 100: none.
-  for (int64_t tick = 3; tick <= 52; ++tick) local.Update(&answer, tool, tick, &flags);
+  for (int64_t tick = 3; tick <= 52; ++tick) {
+    answer.request_tick = tick;
+    local.Update(&answer, tool, tick, &flags);
+  }
   EXPECT_NEAR(local.summary().wrench.w0.f_W.z(), kK * 0.003 * 0.5, 1e-4);
   for (int64_t tick = 53; tick <= 102; ++tick) local.Update(nullptr, tool, tick, &flags);
   EXPECT_EQ(local.summary().wrench.w0.f_W.z(), 0.0);
@@ -227,6 +232,32 @@ TEST(LocalContactModel, AgesOutWhenNoAnswerComes) {
   EXPECT_EQ(local.summary().wrench.K.norm(), 0.0);
   EXPECT_GT(local.counts().stale_ticks, 0);
   EXPECT_EQ(local.model_age(151), 150);
+}
+
+TEST(LocalContactModel, DropsAnAnswerNotNewerThanTheModelsInUse) {
+  Scene scene;
+  auto geometry = scene.Geometry();
+  LocalContactModel local(1, scene.config.contact, scene.Options());
+  ContactSnapshot pressed, above;
+  pressed.Reserve(1);
+  above.Reserve(1);
+  const RigidState deep = ToolAt(Vector3(0, 0, 0.007)), high = ToolAt(Vector3(0, 0, 0.03));
+  geometry->Query(deep.X_W, 5, &pressed);   // 3 mm into the table, tick 5
+  geometry->Query(high.X_W, 10, &above);    // free, tick 10
+  int32_t flags = 0;
+  local.Update(&above, deep, 10, &flags);
+  ASSERT_EQ(local.summary().num_in_contact, 0);
+  local.Update(&pressed, deep, 11, &flags);  // older than the model: dropped
+  EXPECT_EQ(local.summary().num_in_contact, 0);
+  EXPECT_EQ(local.model_age(11), 1);
+  EXPECT_EQ(local.counts().outdated_answers, 1);
+  EXPECT_EQ(local.counts().updates, 1);
+  local.Update(&above, deep, 12, &flags);    // the same tick again: dropped too
+  EXPECT_EQ(local.counts().outdated_answers, 2);
+  pressed.request_tick = 12;                 // newer: taken
+  local.Update(&pressed, deep, 12, &flags);
+  EXPECT_EQ(local.summary().num_in_contact, 1);
+  EXPECT_EQ(local.counts().updates, 2);
 }
 
 }  // namespace
