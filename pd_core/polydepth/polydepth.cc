@@ -163,8 +163,8 @@ Vector3 OutProject(const ModelPair& pair, const Vector3& q_from, const Vector3& 
     *touched = false;
     return q_to;
   }
-  bool recorded = false;
-  const double s = FirstContactAlongTranslation(pair, q_from, d, s_stop, record, &recorded);
+  bool recorded = false, stopped = false;
+  const double s = FirstContactAlongTranslation(pair, q_from, d, s_stop, record, &recorded, &stopped);
   if (s < 0) {
     *touched = false;
     if (record && recorded) {  // a free sweep's record holds the pairs near its end too
@@ -173,8 +173,10 @@ Vector3 OutProject(const ModelPair& pair, const Vector3& q_from, const Vector3& 
     }
     return q_to;
   }
+  // Stopped by the caller's budget (pair.stop_ccd): s is where the sweep is
+  // known free, short of the contact; the point returned is free.
   *touched = true;
-  if (exact) *exact = s >= s_stop;
+  if (exact) *exact = !stopped && s >= s_stop;
   const Vector3 q = q_from + std::max(0.0, s - margin / len) * d;
   if (record && recorded) {
     record->q_S = q;
@@ -287,6 +289,7 @@ struct PolyDepthSolver::Impl {
     if (best_origin == Initializer::kNone || !BudgetSpent()) return false;
     return stopped_early = true;
   }
+  const std::function<bool()> stop_ccd = [this] { return OutOfBudget(); };
   bool BudgetSpent() const {
     return (work_limit > 0 && counters.box_tests + counters.triangle_tests >= work_limit) ||
            (time_limit_us > 0 &&
@@ -525,6 +528,9 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   s.work_limit = options_.max_work;
   s.time_limit_us = options_.max_time_us;
   s.stopped_early = false;
+  // Bounded time: once the budget is spent and a verified answer exists, a
+  // CCD under way stops too, at a point it knows free (translational_ccd.h).
+  if (s.work_limit > 0 || s.time_limit_us > 0.0) pair.stop_ccd = &s.stop_ccd;
   s.list_builds = 0;
   s.list_build_us = 0.0;
   const double size = pair.size();
@@ -730,6 +736,9 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         s.previous_q_S + 64.0 * step * s.previous_n_S};
     auto try_from = [&](const Vector3& q0) {
       if (InCollision(pair, q0)) return false;
+      // Verified free: an answer already (an upper bound), so a bounded
+      // query may stop the out-projection from it (pair.stop_ccd).
+      s.Offer(q0, Initializer::kMotionCoherence);
       bool touched = false;
       const Vector3 q_c =
           OutProjectRecording(pair, q0, Vector3::Zero(), margin, &touched, &s.record);
@@ -759,6 +768,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       for (int attempt = 0; attempt < 3; ++attempt, offset *= 4.0) {
         const Vector3 q0 = back + offset * (back / len);
         if (InCollision(pair, q0)) continue;
+        s.Offer(q0, Initializer::kMotionCoherence);  // verified free (see try_from above)
         bool touched = false;
         const Vector3 q_c =
             OutProjectRecording(pair, q0, Vector3::Zero(), margin, &touched, &s.record);
@@ -1011,7 +1021,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         // the answer is again exactly where it leaves along itself.
         bool touched = false;
         const Vector3 e = OutProject(pair, q, Vector3::Zero(), margin, &touched);
-        if (touched && !InCollision(pair, e + thickness * e.normalized())) q = e;
+        // (A budget-stopped out-projection may not move: e == q, tested above.)
+        if (touched && e != q && !InCollision(pair, e + thickness * e.normalized())) q = e;
         s.best_q_S = q;
         s.best_norm = q.norm();
         verified_q_S = q;

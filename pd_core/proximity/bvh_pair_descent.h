@@ -28,6 +28,10 @@
 //                larger one): the descent ends at the first popped pair that
 //                is not alive. When the heap is full, a popped pair's subtree
 //                is descended depth-first instead (same pairs, other order).
+//                An optional stop() predicate, asked before each pair popped
+//                from the heap, ends the descent early: the popped pair's
+//                key is then a lower bound on the key of every leaf pair not
+//                yet reached (bounded-time CCD: contact-free up to it).
 // Both orders visit the same leaf pairs when alive is always true, and give
 // a min-over-leaves query (CCD) the same answer.
 #include <array>
@@ -155,8 +159,11 @@ struct Descent {
   }
   // Best-first from `root` on a binary min-heap of the fixed array `heap`,
   // with `stack` for the depth-first fallback when the heap is full.
-  template <size_t kHeap, typename Stack>
-  bool BestFirst(std::array<DescentEntry, kHeap>& heap, Stack& stack, const DescentEntry& root) {
+  // stop() asked before each pop; when it says stop, *stopped_at gets the
+  // popped key and the descent returns true.
+  template <size_t kHeap, typename Stack, typename Stop>
+  bool BestFirst(std::array<DescentEntry, kHeap>& heap, Stack& stack, const DescentEntry& root,
+                 Stop& stop, double* stopped_at) {
     size_t size = 0;
     auto push = [&](const DescentEntry& x) {
       size_t i = size++;
@@ -185,6 +192,10 @@ struct Descent {
     };
     push(root);
     while (size > 0) {
+      if (stop()) {
+        *stopped_at = heap[0].key;  // the lowest pending key
+        return true;
+      }
       const DescentEntry e = pop();
       if (!alive(e.key)) return true;  // monotone: every pending pair is later
       if (IsLeafPair(e)) {
@@ -210,15 +221,25 @@ inline constexpr int kDescentStackCapacity = 192;
 // depth-first for a popped pair's subtree (16 bytes each, on the stack).
 inline constexpr int kBestFirstHeapCapacity = 1024;
 
+namespace internal {
+struct NeverStop {
+  bool operator()() const { return false; }
+};
+}  // namespace internal
+
 // Descends from the pair of subtrees rooted at nodes root_P and root_S (by
 // default the whole hierarchies; a candidate list's entries are pairs of
 // small subtrees, see candidate_pairs.h). Returns false if the leaf action
-// stopped the descent.
+// stopped the descent. Best-first only: `stop` (see above) may end it early,
+// with *stopped_at the lowest key pending (left untouched otherwise).
 template <DescentOrder kOrder = DescentOrder::kDepthFirst, typename NodeTest, typename Alive,
-          typename LeafFn>
+          typename LeafFn, typename Stop = internal::NeverStop>
 bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&& alive,
                     LeafFn&& on_leaf_pair, ProximityCounters* counters = nullptr,
-                    int32_t root_P = 0, int32_t root_S = 0) {
+                    int32_t root_P = 0, int32_t root_S = 0, Stop&& stop = Stop{},
+                    double* stopped_at = nullptr) {
+  static_assert(kOrder == DescentOrder::kBestFirst || std::is_same_v<std::decay_t<Stop>, internal::NeverStop>,
+                "stop() is for best-first descents (a depth-first one pauses: DescentCursor)");
   if (bvh_P.empty() || bvh_S.empty()) return true;
   internal::Descent<std::remove_reference_t<NodeTest>, std::remove_reference_t<Alive>,
                     std::remove_reference_t<LeafFn>>
@@ -231,7 +252,8 @@ bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&&
     auto run = [&](auto& stack) {
       if constexpr (kOrder == DescentOrder::kBestFirst) {
         std::array<internal::DescentEntry, kBestFirstHeapCapacity> heap;
-        completed = d.BestFirst(heap, stack, root);
+        double unused = 0.0;
+        completed = d.BestFirst(heap, stack, root, stop, stopped_at ? stopped_at : &unused);
       } else {
         completed = d.DepthFirst(stack, root);
       }

@@ -2,6 +2,8 @@
 // A probe model P posed in a scene model's frame S: the shared context of all
 // pair queries. Every query takes an extra translation `offset_S` of the probe
 // (expressed in S), the configuration-space point PolyDepth moves through.
+#include <functional>
+
 #include "pd_core/proximity/bvh_pair_descent.h"
 #include "pd_core/mesh/collision_model.h"
 #include "pd_core/geometry/relative_pose.h"
@@ -23,6 +25,9 @@ struct ModelPair {
   const LeafPairRecord* recorded = nullptr;
   // Optional cost accounting of the queries on this pair.
   ProximityCounters* counters = nullptr;
+  // Optional: asked during a CCD's best-first descent; true ends it early
+  // (a bounded-time caller's budget is spent). See translational_ccd.h.
+  const std::function<bool()>* stop_ccd = nullptr;
 
   ModelPair(const CollisionModel& probe, const CollisionModel& scene, const Isometry3& X_WP,
             const Isometry3& X_WS)

@@ -57,8 +57,9 @@ void TriangleFirstContact(const ModelPair& pair, PlacedProbeTriangles& placed, i
 
 double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset_S,
                                     const Vector3& sweep_S, double s_stop,
-                                    LeafPairRecord* record, bool* record_complete) {
+                                    LeafPairRecord* record, bool* record_complete, bool* stopped) {
   WorkScope scope(pair.counters, QueryKind::kOutProjection);
+  if (stopped) *stopped = false;
   const Bvh& bvh_P = pair.P.bvh();
   const Bvh& bvh_S = pair.S.bvh();
   if (record_complete) *record_complete = false;
@@ -141,10 +142,20 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   // Earliest possible contact first over all pending node pairs: the first
   // contact is found expanding only pairs that may touch before it, and the
   // descent ends once the earliest pending pair is later than it.
+  // The caller's stop: contact-free up to the lowest pending key.
+  double free_until = 2.0;
+  auto stop = [&] { return pair.stop_ccd != nullptr && (*pair.stop_ccd)(); };
+  auto result = [&] {
+    if (free_until <= 1.0 && !(hit && s_best <= free_until)) {
+      if (stopped) *stopped = true;
+      return std::max(free_until, s_min);
+    }
+    return hit ? s_best : -1.0;
+  };
   if (record == nullptr || s_stop >= 0.0) {
     DescendBvhPair<DescentOrder::kBestFirst>(bvh_P, bvh_S, may_meet, before_best, leaf_contacts,
-                                             pair.counters);
-    return hit ? s_best : -1.0;
+                                             pair.counters, 0, 0, stop, &free_until);
+    return result();
   }
   // Recording: boxes grown by the record's distance (with a relative slack
   // against round-off), keyed by when they come that near. A leaf pair within
@@ -158,9 +169,9 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
         record->pairs.push_back({ip, is});
         return leaf_contacts(ip, is);
       },
-      pair.counters);
-  if (record_complete) *record_complete = true;
-  return hit ? s_best : -1.0;
+      pair.counters, 0, 0, stop, &free_until);
+  if (record_complete) *record_complete = free_until > 1.0;
+  return result();
 }
 
 }  // namespace pd

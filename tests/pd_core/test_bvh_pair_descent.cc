@@ -7,6 +7,8 @@
 // idle time) visits the same pairs in the same order as one uninterrupted.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <algorithm>
 #include <set>
 #include <utility>
@@ -208,6 +210,52 @@ TEST(BvhPairDescent, BestFirstEndsAtTheFirstPairNotAlive) {
   EXPECT_LT(limited.box_tests, all.box_tests / 4);
 }
 
+
+// A best-first descent stopped by the caller (bounded-time CCD) reports the
+// lowest pending key: a lower bound on the key of every leaf pair it did not
+// reach. Checked against the full descent's leaf keys.
+TEST(BvhPairDescent, BestFirstStoppedReportsALowerBoundOnEveryLeafNotReached) {
+  const Bvh a = Balanced(6, 1.0), b = Balanced(6, 1.0);
+  auto key_from_20 = [](const BvhNode& x, const BvhNode& y, double* key) {
+    *key = std::max(*key, std::abs(x.center_M.x() - 20.0) - x.half_B.x());
+    return Overlap(x, y);
+  };
+  std::vector<std::tuple<int, int, double>> all;
+  DescendBvhPair<DescentOrder::kBestFirst>(
+      a, b, key_from_20, [](double) { return true; },
+      [&](int ip, int is, double key) {
+        all.emplace_back(ip, is, key);
+        return true;
+      });
+  ASSERT_GT(all.size(), 20u);
+  for (int stop_after : {1, 5, 40}) {
+    std::vector<std::pair<int, int>> reached;
+    int asked = 0;
+    double stopped_at = 1e300;
+    DescendBvhPair<DescentOrder::kBestFirst>(
+        a, b, key_from_20, [](double) { return true; },
+        [&](int ip, int is) {
+          reached.emplace_back(ip, is);
+          return true;
+        },
+        nullptr, 0, 0, [&] { return ++asked > stop_after; }, &stopped_at);
+    EXPECT_EQ(asked, stop_after + 1);  // asked before each pop until it says stop
+    ASSERT_LT(stopped_at, 1e300) << stop_after;
+    int not_reached = 0;
+    for (const auto& [ip, is, key] : all) {
+      if (std::find(reached.begin(), reached.end(), std::make_pair(ip, is)) != reached.end()) continue;
+      ++not_reached;
+      EXPECT_GE(key, stopped_at) << stop_after;
+    }
+    EXPECT_GT(not_reached, 0) << stop_after;
+  }
+  // Never stopped: *stopped_at untouched.
+  double untouched = 7.0;
+  DescendBvhPair<DescentOrder::kBestFirst>(
+      a, b, key_from_20, [](double) { return true; }, [](int, int) { return true; }, nullptr, 0, 0,
+      [] { return false; }, &untouched);
+  EXPECT_EQ(untouched, 7.0);
+}
 
 // Leaf pairs of a depth-first descent run in pieces, pausing after every
 // `stride` pairs visited; *calls gets how many calls it took.

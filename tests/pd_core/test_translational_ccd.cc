@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -237,6 +238,45 @@ TEST_F(TranslationalCcd, EarlyStopBeforeSStopReportsAContactAndIsExactAfterIt) {
 // list was built there (of leaf pairs or twig pairs): the CCD walks the list (skipping entries
 // their separating axis keeps apart) and finds the first contact brute force
 // over all triangle pairs finds.
+// Bounded time: a CCD stopped by the caller (ModelPair::stop_ccd) returns a
+// fraction no later than the exact first contact (brute force), says it
+// stopped, and the probe there is collision-free; one not stopped is exact.
+TEST_F(TranslationalCcd, AStoppedSearchReturnsAFreePointNoLaterThanTheFirstContact) {
+  const Model P = cow_, S = knot1_;
+  std::mt19937_64 rng(11);
+  int stopped_short = 0, checked = 0;
+  for (int k = 0; k < 2; ++k) {
+    ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    for (size_t i = 0; i < std::min<size_t>(starts.size(), 4); ++i) {
+      const Vector3 from = starts[i].q_S, sweep = -starts[i].q_S;
+      const double exact = BruteForceFirstContact(pair, from, sweep);
+      ASSERT_GE(exact, 0.0);  // the query pose collides: the sweep to it touches
+      for (int stop_after : {0, 3, 30, 300}) {
+        int asked = 0;
+        const std::function<bool()> stop = [&] { return ++asked > stop_after; };
+        pair.stop_ccd = &stop;
+        bool stopped = false;
+        const double s = FirstContactAlongTranslation(pair, from, sweep, -1.0, nullptr, nullptr, &stopped);
+        pair.stop_ccd = nullptr;
+        ++checked;
+        if (!stopped) {
+          EXPECT_NEAR(s, exact, 1e-12) << k << " " << i << " " << stop_after;
+          continue;
+        }
+        ASSERT_GE(s, 0.0);
+        EXPECT_LE(s, exact + 1e-12) << k << " " << i << " " << stop_after;
+        // Free there (a hair before s, against round-off at a touching s).
+        EXPECT_FALSE(InCollision(pair, from + std::max(0.0, s - 1e-9) * sweep)) << k << " " << i;
+        stopped_short += s < exact - 1e-9;
+      }
+    }
+  }
+  EXPECT_GE(checked, 24);
+  EXPECT_GT(stopped_short, 5);  // the stop did stop searches short of the contact
+}
+
 TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterMotion) {
   const Model P = cow_, S = knot1_;
   std::mt19937_64 rng(5);
