@@ -1,5 +1,6 @@
 #include "pd_core/polydepth/contact_constraints.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "pd_core/proximity/box_overlap.h"
@@ -30,9 +31,18 @@ namespace {
 // Shared by both entry points; with test_intersection, stops (returning
 // false) at the first intersecting triangle pair.
 bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool test_intersection,
-              std::vector<ContactConstraint>* out, CollisionWitness* witness) {
+              std::vector<ContactConstraint>* out, CollisionWitness* witness,
+              LeafPairRecord* record) {
   WorkScope scope(pair.counters, QueryKind::kLocalisation);
   out->clear();
+  // Recording: the leaf pairs found (every one within `reach` at q_S, by
+  // whichever path ForEachLeafPairNear takes) become the record at q_S.
+  const bool recording = record != nullptr && !record->Covers(q_S, q_S, distance);
+  const double reach = recording ? std::max(distance, record->distance) : distance;
+  if (recording) {
+    record->Invalidate();
+    record->pairs.clear();
+  }
   bool free = true;
   const double dist2 = distance * distance;
   // Plane distances beyond this prove a pair farther than `distance` (the
@@ -70,15 +80,16 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
   ProbeBoxMemo probe_box(pair.X_SP, q_S);
   PlacedProbeTriangles placed(pair, q_S);
   ForEachLeafPairNear(
-      pair, q_S, q_S, distance,
+      pair, q_S, q_S, reach,
       // Face axes alone, leaf pairs too: a pair the nine edge-edge axes
       // would have rejected costs a few triangle tests, which reject it on
       // their own (its features are farther than `distance`); skipping those
       // axes on every pair saves more (a median warm query: 10-15%).
       [&](const BvhNode& a, const BvhNode& b) {
-        return BoxesWithin<BoxAxes::kFaces>(probe_box(a), b, distance);
+        return BoxesWithin<BoxAxes::kFaces>(probe_box(a), b, reach);
       },
       [&](int ip, int is) {
+       if (recording) record->pairs.push_back({ip, is});
        return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
         if (pair.counters) ++pair.counters->triangle_tests;
         const PlacedProbeTriangles::Triangle& probe = placed(tp);
@@ -167,21 +178,25 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
         return true;
        });
       });
+  if (recording && free) {
+    record->q_S = q_S;
+    record->valid = true;
+  }
   return free;
 }
 
 }  // namespace
 
 void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double distance,
-                               std::vector<ContactConstraint>* out) {
-  Localise(pair, q_S, distance, false, out, nullptr);
+                               std::vector<ContactConstraint>* out, LeafPairRecord* record) {
+  Localise(pair, q_S, distance, false, out, nullptr, record);
 }
 
 bool CollectContactConstraintsIfSurfacesFree(const ModelPair& pair, const Vector3& q_S,
                                              double distance,
                                              std::vector<ContactConstraint>* out,
-                                             CollisionWitness* witness) {
-  return Localise(pair, q_S, distance, true, out, witness);
+                                             CollisionWitness* witness, LeafPairRecord* record) {
+  return Localise(pair, q_S, distance, true, out, witness, record);
 }
 
 void RefreshContactConstraints(const ModelPair& pair, const Vector3& q_S,

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pd_core/proximity/leaf_pair_record.h"
 #include "pd_core/proximity/mesh_collision.h"
 #include "pd_core/proximity/model_pair.h"
 
@@ -28,18 +29,25 @@ struct ContactConstraint {
 // Appends (after clearing) the constraints of all feature pairs closer than
 // `distance` (m) with the probe translated by q_S. The configuration is
 // expected to be collision-free (a point on or near the contact space).
+// With `record` (unless it covers q_S for `distance` already), the leaf
+// pairs within max(distance, record->distance) of each other at q_S are
+// recorded there (leaf_pair_record.h): the tests just off this
+// configuration walk them instead of descending.
 void CollectContactConstraints(const ModelPair& pair, const Vector3& q_S, double distance,
-                               std::vector<ContactConstraint>* out);
+                               std::vector<ContactConstraint>* out,
+                               LeafPairRecord* record = nullptr);
 
 // Localisation fused with the surface-intersection test at the same
 // configuration (one pass over the same leaf pairs): returns false, with
-// `out` incomplete, as soon as a probe triangle intersects a scene triangle
-// (recorded in *witness if given); otherwise collects like
-// CollectContactConstraints and returns true. Containment is not tested.
+// `out` incomplete (and `record` invalid), as soon as a probe triangle
+// intersects a scene triangle (recorded in *witness if given); otherwise
+// collects like CollectContactConstraints and returns true. Containment is
+// not tested.
 bool CollectContactConstraintsIfSurfacesFree(const ModelPair& pair, const Vector3& q_S,
                                              double distance,
                                              std::vector<ContactConstraint>* out,
-                                             CollisionWitness* witness = nullptr);
+                                             CollisionWitness* witness = nullptr,
+                                             LeafPairRecord* record = nullptr);
 
 // The same feature pairs as `in` (collected at an earlier pose of the pair),
 // their half-spaces re-evaluated at the pair's current pose with the probe

@@ -179,7 +179,10 @@ Vector3 OutProject(const ModelPair& pair, const Vector3& q_from, const Vector3& 
   if (exact) *exact = !stopped && s >= s_stop;
   const Vector3 q = q_from + std::max(0.0, s - margin / len) * d;
   if (record && recorded) {
-    record->q_S = q;
+    // Made at the contact (the sweep's pairs are complete there, past any
+    // part a list showed free); it covers the landing point a margin back
+    // as its distance has that room (Solve).
+    record->q_S = q_from + s * d;
     record->valid = true;
   }
   return q;
@@ -385,7 +388,7 @@ struct PolyDepthSolver::Impl {
     ++s.iterations;
     if (origin == Initializer::kMotionCoherence) s.FollowWithList(pair, opt, size, q_c);
     // Localise the contact space at q_c and in-project toward the query.
-    CollectContactConstraints(pair, q_c, contact_distance, &s.constraints);
+    CollectContactConstraints(pair, q_c, contact_distance, &s.constraints, &s.record);
     s.constraints_q_S = q_c;
     if (q_c == s.best_q_S) {
       s.best_constraints = s.constraints;
@@ -521,7 +524,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   ModelPair pair(*probe_, *scene_, X_WP, X_WS);
   pair.candidates = &s.candidates;
   s.record.Invalidate();
-  s.record.distance = options_.contact_tol * pair.size();
+  // The localisation's distance plus room for the landing's margin (OutProject).
+  s.record.distance = (options_.contact_tol + 2.0 * options_.separation_margin) * pair.size();
   pair.recorded = &s.record;
   s.counters = ProximityCounters{};
   pair.counters = &s.counters;
@@ -547,7 +551,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     if (s.best_constraints_q_S == s.best_q_S)
       s.constraints = s.best_constraints;
     else
-      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints);
+      CollectContactConstraints(pair, s.best_q_S, contact_distance, &s.constraints, &s.record);
     s.constraints_q_S = s.best_q_S;
   };
   auto finish = [&] {
@@ -690,7 +694,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (s.OutOfBudget()) break;
       s.constraints_q_S = Vector3::Constant(1e300);  // about to be overwritten
       if (!CollectContactConstraintsIfSurfacesFree(pair, q, contact_distance, &s.constraints,
-                                                   &s.witness) ||
+                                                   &s.witness, &s.record) ||
           AnyComponentInside(pair, q))
         break;
       s.constraints_q_S = q;

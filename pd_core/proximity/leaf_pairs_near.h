@@ -2,8 +2,8 @@
 // The leaf pairs a query at a configuration (or along a segment of them)
 // must look at: from the pair's candidate list when that covers the
 // configurations (only its near prefix, see candidate_pairs.h), otherwise
-// from the last CCD's record when that answers for the configuration (see
-// leaf_pair_record.h), otherwise from a BVH descent. All paths apply the same
+// from the pair's record (the last CCD's or localisation's) when that
+// answers for them (see leaf_pair_record.h), otherwise from a BVH descent. All paths apply the same
 // node test, so the caller sees the same pairs either way, minus those the
 // list proves too far and plus, from a record, a few whose ancestors the
 // descent would have rejected (their features are farther than `distance`).
@@ -66,8 +66,8 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
   }
   const LeafPairRecord* record = pair.recorded;
   if (record != nullptr && record->Covers(q_a_S, q_b_S, distance)) {
-    // The last CCD's leaf pairs near its landing point: the same node test
-    // on each (the pairs a descent would find are among them).
+    // The recorded leaf pairs near these configurations: the same node
+    // test on each (the pairs a descent would find are among them).
     double unused_key;
     const auto& nodes_P = pair.P.bvh().nodes();
     const auto& nodes_S = pair.S.bvh().nodes();

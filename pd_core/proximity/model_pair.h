@@ -20,8 +20,9 @@ struct ModelPair {
   // Optional leaf-pair list of this pair (see candidate_pairs.h); queries
   // use it instead of descending the BVHs when it covers their configurations.
   const CandidatePairs* candidates = nullptr;
-  // Optional leaf pairs recorded by the last CCD (see leaf_pair_record.h):
-  // used instead of a descent at the one configuration it answers for.
+  // Optional leaf pairs recorded near one configuration by the last CCD or
+  // localisation (see leaf_pair_record.h): used instead of a descent at the
+  // configurations it answers for.
   const LeafPairRecord* recorded = nullptr;
   // Optional cost accounting of the queries on this pair.
   ProximityCounters* counters = nullptr;

@@ -23,6 +23,7 @@
 #include "pd_core/proximity/model_pair.h"
 #include "pd_core/proximity/triangle_geometry.h"
 #include "tests/prerequisites.h"
+#include "tests/pd_core/brute_force_pairs.h"
 #include "tests/pd_core/fandisk_on_elephant.h"
 #include "tests/pd_core/scaled_mesh_model.h"
 
@@ -31,23 +32,7 @@ namespace {
 
 using test::LoadScaled;
 
-// Distance between two triangles (m): zero if they intersect, else the
-// smallest of the vertex-triangle and edge-edge distances.
-double TriangleDistance(const Vector3 a[3], const Vector3 b[3]) {
-  if (TrianglesIntersect(a[0], a[1], a[2], b[0], b[1], b[2])) return 0.0;
-  double d = 1e300;
-  for (int i = 0; i < 3; ++i) {
-    d = std::min(d, (a[i] - ClosestPointOnTriangle(a[i], b[0], b[1], b[2])).norm());
-    d = std::min(d, (b[i] - ClosestPointOnTriangle(b[i], a[0], a[1], a[2])).norm());
-    for (int j = 0; j < 3; ++j) {
-      double s, t;
-      Vector3 p, q;
-      d = std::min(d, std::sqrt(ClosestSegmentSegment(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3],
-                                                      &s, &t, &p, &q)));
-    }
-  }
-  return d;
-}
+using test::TriangleDistance;
 
 using TrianglePairs = std::set<std::pair<int, int>>;
 

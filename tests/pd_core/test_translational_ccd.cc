@@ -402,23 +402,6 @@ TEST_F(TranslationalCcd, BestFirstDescentFindsTheSameContactWithFewerBoxTestsOnL
       << "best-first " << best_first.box_tests << " vs depth-first " << depth_first.box_tests;
 }
 
-// Distance between two triangles that do not intersect: the least over the
-// 6 vertex-triangle and 9 edge-edge closest pairs.
-double TriangleDistance(const Vector3 a[3], const Vector3 b[3]) {
-  double d2 = 1e300;
-  for (int k = 0; k < 3; ++k) {
-    d2 = std::min(d2, (a[k] - ClosestPointOnTriangle(a[k], b[0], b[1], b[2])).squaredNorm());
-    d2 = std::min(d2, (b[k] - ClosestPointOnTriangle(b[k], a[0], a[1], a[2])).squaredNorm());
-    for (int j = 0; j < 3; ++j) {
-      double u, v;
-      Vector3 pa, pb;
-      d2 = std::min(d2, ClosestSegmentSegment(a[k], a[(k + 1) % 3], b[j], b[(j + 1) % 3], &u, &v,
-                                              &pa, &pb));
-    }
-  }
-  return std::sqrt(d2);
-}
-
 // A CCD that records (PolyDepth's out-projection before it localises at the
 // landing point): the same first contact, and the record holds the leaf
 // pair of every triangle pair within the record's distance at the landing
@@ -428,17 +411,8 @@ double TriangleDistance(const Vector3 a[3], const Vector3 b[3]) {
 TEST_F(TranslationalCcd, RecordHoldsEveryLeafPairNearTheLandingPointAndLocalisesTheSame) {
   const Model P = knot1_, S = cow_;
   std::mt19937_64 rng(17);
-  // Leaf node of each triangle, per model.
-  auto leaf_of = [](const Bvh& bvh, int num_triangles) {
-    std::vector<int> leaf(num_triangles, -1);
-    for (size_t i = 0; i < bvh.nodes().size(); ++i) {
-      const BvhNode& n = bvh.nodes()[i];
-      for (int k = 0; k < n.count; ++k) leaf[bvh.order()[n.right_or_first + k]] = i;
-    }
-    return leaf;
-  };
-  const std::vector<int> leaf_P = leaf_of(P->bvh(), P->mesh().num_triangles());
-  const std::vector<int> leaf_S = leaf_of(S->bvh(), S->mesh().num_triangles());
+  const std::vector<int> leaf_P = test::LeafOfTriangle(P->bvh(), P->mesh().num_triangles());
+  const std::vector<int> leaf_S = test::LeafOfTriangle(S->bvh(), S->mesh().num_triangles());
   int near_pairs = 0, localisations = 0;
   ProximityCounters with_record, by_descent;
   for (int k = 0; k < 3; ++k) {
@@ -463,25 +437,12 @@ TEST_F(TranslationalCcd, RecordHoldsEveryLeafPairNearTheLandingPointAndLocalises
       std::vector<std::pair<int, int>> recorded;
       for (const auto& e : record.pairs) recorded.push_back({e.ip, e.is});
       std::sort(recorded.begin(), recorded.end());
-      const int n_P = P->mesh().num_triangles(), n_S = S->mesh().num_triangles();
-      for (int tp = 0; tp < n_P; ++tp) {
-        Vector3 p[3];
-        pair.ProbeTriangle(tp, q_c, p);
-        const Vector3 lo = p[0].cwiseMin(p[1]).cwiseMin(p[2]).array() - d;
-        const Vector3 hi = p[0].cwiseMax(p[1]).cwiseMax(p[2]).array() + d;
-        for (int ts = 0; ts < n_S; ++ts) {
-          Vector3 t[3];
-          pair.SceneTriangle(ts, t);
-          if ((lo.array() > t[0].cwiseMax(t[1]).cwiseMax(t[2]).array()).any() ||
-              (hi.array() < t[0].cwiseMin(t[1]).cwiseMin(t[2]).array()).any())
-            continue;
-          if (TriangleDistance(p, t) > d) continue;
-          ++near_pairs;
-          EXPECT_TRUE(std::binary_search(recorded.begin(), recorded.end(),
-                                         std::make_pair(leaf_P[tp], leaf_S[ts])))
-              << "pose " << k << " start " << i << " triangles " << tp << ", " << ts;
-        }
-      }
+      test::ForEachTrianglePairWithin(pair, q_c, d, [&](int tp, int ts) {
+        ++near_pairs;
+        EXPECT_TRUE(std::binary_search(recorded.begin(), recorded.end(),
+                                       std::make_pair(leaf_P[tp], leaf_S[ts])))
+            << "pose " << k << " start " << i << " triangles " << tp << ", " << ts;
+      });
       // The localisation at q_c, by descent and from the record.
       std::vector<ContactConstraint> by_tree, by_record;
       pair.counters = &by_descent;
