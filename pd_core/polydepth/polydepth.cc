@@ -895,8 +895,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // the next queries follow. Any shorter answer is reachable this way from
   // the direction it lies in, so the check needs no far-away starts (a burst
   // of cold starts here cost 10-30 ms).
+  // (A bounded query out of budget leaves both to the next query.)
+  const bool budget_left = !(warm_found && s.OutOfBudget());
   const bool check =
-      warm_found && (s.check_next >= 0 ||
+      warm_found && budget_left && (s.check_next >= 0 ||
                      (s.anchor_depth > 0.0 &&
                       s.best_norm > kReanchorGrowth * s.anchor_depth + kReanchorFloor * size));
   // 2c. Between checks, a coherent answer that has turned away from the
@@ -907,7 +909,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // turned 14-48 degrees away and grew 1.22 -> 2.02 mm before the check's
   // 1.2x trigger; mean error on the bench's poses 6.1% -> 0.5%).
   const bool turned =
-      warm_found && !check && s.anchor_depth > 0.0 &&
+      warm_found && budget_left && !check && s.anchor_depth > 0.0 &&
       s.best_norm > kAnchorProbeGrowth * std::max(s.anchor_depth, s.anchor_probe_depth) &&
       s.best_q_S.dot(s.anchor_n_S) < kAnchorProbeCos * s.best_norm;
   // 2d. Before either: the answer's own contact may prove it within

@@ -3,7 +3,7 @@
 // apart, interpolated here between the two ends), where the followed answer
 // turns away from its earlier direction and grows while a shallower escape
 // opens back toward that direction. Scored against the independent reference
-// PD at the last pose.
+// PD at the last pose; and, bounded, where the checks of that drift wait.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -22,31 +22,44 @@ using Model = std::shared_ptr<const CollisionModel>;
 using test::LoadScaled;
 using test::Pose;
 
+// The path's meshes (each test requires them first: kMeshes) and the tool's
+// pose (in the object's frame S = W) at step i of kSteps, interpolated
+// between the two ends; scales and poses as bench_pd makes them.
+constexpr const char* kMeshes[] = {"fandisk.off", "refined_elephant.off"};
+struct FandiskDriftPath {
+  static constexpr int kSteps = 28;
+  Model tool = LoadScaled("fandisk.off", 0.034431803204303821);
+  Model object = LoadScaled("refined_elephant.off", 0.12763984046501484);
+  Isometry3 X_WP(int i) const {
+    const Vector3 p0(0.043860045513402203, -0.023996979285694404, 0.026112222875851313);
+    const Quaternion q0(0.79013238350542736, 0.24056990352443952, 0.54975462791130669,
+                        -0.12484705500881792);
+    const Vector3 p1(0.043271143390655548, -0.020344178078998333, 0.02178685156320526);
+    const Quaternion q1(0.78894881639903036, 0.23933698127630806, 0.55064487332792467,
+                        -0.13064378275978922);
+    const double t = static_cast<double>(i) / kSteps;
+    return Pose((1.0 - t) * p0 + t * p1, q0.slerp(t, q1));
+  }
+};
+
 // Before the probe back along the shallowest answer's direction (step 2c of
 // PolyDepthSolver::Solve), the answer at the last pose was 1.72 mm against
 // the reference's 1.08 (+59%: the bench's worst sampled pose on this path);
 // the 2b cross-check only starts at 1.2x its anchor plus 5e-3 of the size.
 TEST(CoherentBasinDrift, FandiskOnElephantAnswerReturnsToTheShallowerEscape) {
-  for (const char* f : {"fandisk.off", "refined_elephant.off"})
+  for (const char* f : kMeshes)
     PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
-  // Scales and poses (tool in the object's frame) as bench_pd makes them.
-  const Model tool = LoadScaled("fandisk.off", 0.034431803204303821);
-  const Model object = LoadScaled("refined_elephant.off", 0.12763984046501484);
-  const Vector3 p0(0.043860045513402203, -0.023996979285694404, 0.026112222875851313);
-  const Quaternion q0(0.79013238350542736, 0.24056990352443952, 0.54975462791130669,
-                      -0.12484705500881792);
-  const Vector3 p1(0.043271143390655548, -0.020344178078998333, 0.02178685156320526);
-  const Quaternion q1(0.78894881639903036, 0.23933698127630806, 0.55064487332792467,
-                      -0.13064378275978922);
+  const FandiskDriftPath path;
+  const Model& tool = path.tool;
+  const Model& object = path.object;
   const Isometry3 X_WS = Isometry3::Identity();
   PolyDepthSolver solver(tool, object);
-  constexpr int kSteps = 28;
+  constexpr int kSteps = FandiskDriftPath::kSteps;
   PenetrationResult r;
   Isometry3 X_WP;
   double shallowest = 1e300;
   for (int i = 0; i <= kSteps; ++i) {
-    const double t = static_cast<double>(i) / kSteps;
-    X_WP = Pose((1.0 - t) * p0 + t * p1, q0.slerp(t, q1));
+    X_WP = path.X_WP(i);
     r = solver.Solve(X_WP, X_WS, true);
     ASSERT_TRUE(r.in_collision) << "pose " << i;
     ASSERT_TRUE(r.valid) << "pose " << i;
@@ -67,6 +80,30 @@ TEST(CoherentBasinDrift, FandiskOnElephantAnswerReturnsToTheShallowerEscape) {
   // above the shallowest answer before the fix.
   EXPECT_LE(r.depth, 1.05 * ref.depth) << "reference " << ref.depth;
   EXPECT_LE(r.depth, 1.15 * shallowest);
+}
+
+// A bounded query (PolyDepthOptions::max_work) that is out of budget once it
+// has an answer leaves the cross-check and the probe back along the anchor
+// (steps 2b and 2c) to the next query: optional work does not start past the
+// budget. Unbounded, this path runs them.
+TEST(CoherentBasinDrift, AQueryOutOfBudgetLeavesTheCrossCheckToTheNextOne) {
+  for (const char* f : kMeshes)
+    PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
+  const FandiskDriftPath path;
+  PolyDepthOptions bounded;
+  bounded.max_work = 1;  // spent by the time any answer exists
+  PolyDepthSolver full(path.tool, path.object), quick(path.tool, path.object, bounded);
+  int checked = 0, stopped = 0;
+  for (int i = 0; i <= FandiskDriftPath::kSteps; ++i) {
+    const PenetrationResult a = full.Solve(path.X_WP(i), Isometry3::Identity(), true);
+    checked += a.cross_checked;
+    const PenetrationResult b = quick.Solve(path.X_WP(i), Isometry3::Identity(), true);
+    ASSERT_TRUE(b.valid) << "pose " << i;
+    stopped += !b.converged;
+    EXPECT_FALSE(!b.converged && b.cross_checked) << "pose " << i;
+  }
+  EXPECT_GT(checked, 0);
+  EXPECT_GT(stopped, 20);
 }
 
 }  // namespace
