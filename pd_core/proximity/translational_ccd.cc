@@ -94,6 +94,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
     return true;
   };
   auto before_best = [&](double s_lo) { return s_lo <= s_best; };
+  auto stop = [&] { return pair.stop_ccd != nullptr && (*pair.stop_ccd)(); };
   if (covered > 0.0) {
     // Every pair that can touch on [0, s] is in the list's prefix for the
     // largest displacement over that part of the sweep; a first contact
@@ -110,7 +111,12 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
     Vector3 shift_from;
     double rot = 0.0;
     list->MotionSinceBuild(pair, offset_S, &shift_from, &rot);
-    for (;;) {
+    for (double s_free = 0.0;; s_free = s_part, s_part = std::min(covered, 4.0 * s_part)) {
+      // The caller's stop, between parts: contact-free up to the last part.
+      if (s_free > 0.0 && stop()) {
+        if (stopped) *stopped = true;
+        return s_free;
+      }
       s_best = s_part;
       const double displacement = start_displacement + s_part * sweep_len;
       const int n = list->NearCount(0.0, displacement);
@@ -133,7 +139,6 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
       if (pair.counters) pair.counters->box_tests += tested;
       if (hit) return s_best;
       if (s_part >= covered) break;
-      s_part = std::min(covered, 4.0 * s_part);
     }
     if (covered >= 1.0) return -1.0;
     s_best = 1.0;
@@ -144,7 +149,6 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   // descent ends once the earliest pending pair is later than it.
   // The caller's stop: contact-free up to the lowest pending key.
   double free_until = 2.0;
-  auto stop = [&] { return pair.stop_ccd != nullptr && (*pair.stop_ccd)(); };
   auto result = [&] {
     if (free_until <= 1.0 && !(hit && s_best <= free_until)) {
       if (stopped) *stopped = true;

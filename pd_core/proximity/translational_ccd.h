@@ -24,11 +24,12 @@ namespace pd {
 // first contact (see leaf_pair_record.h), and returns with *record_complete
 // true; otherwise (the leaf-pair list answered) the record is incomplete.
 //
-// `pair.stop_ccd` (optional): asked as the search goes (past the part a
-// candidate list covers); when it says stop, the search returns at once a
-// fraction up to which the sweep is known contact-free (the lowest pending
-// key of the best-first descent, or an earlier contact found), with
-// *stopped (if given) true. The record is then incomplete.
+// `pair.stop_ccd` (optional): asked as the search goes (between the parts of
+// a candidate-list walk, before each pop of the descent); when it says stop,
+// the search returns at once a fraction up to which the sweep is known
+// contact-free (the parts of the list walked, the lowest pending key of the
+// best-first descent, or an earlier contact found), with *stopped (if given)
+// true. The record is then incomplete.
 double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset_S,
                                     const Vector3& sweep_S, double s_stop = -1.0,
                                     LeafPairRecord* record = nullptr,

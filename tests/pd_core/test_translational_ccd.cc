@@ -277,6 +277,40 @@ TEST_F(TranslationalCcd, AStoppedSearchReturnsAFreePointNoLaterThanTheFirstConta
   EXPECT_GT(stopped_short, 5);  // the stop did stop searches short of the contact
 }
 
+// The stop is asked between the parts of a candidate-list walk too (the
+// walk of a dense list's prefix costs thousands of tests): a search stopped
+// there returns where the parts walked showed the sweep free.
+TEST_F(TranslationalCcd, AStoppedListWalkReturnsTheFreePartItWalked) {
+  const Model P = cow_, S = knot1_;
+  std::mt19937_64 rng(9);
+  int stopped_in_list = 0;
+  for (int k = 0; k < 3; ++k) {
+    ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(pair, &starts);
+    const Vector3 from = starts[0].q_S;
+    CandidatePairs list;
+    list.Build(pair, from, 0.03 * pair.size(), CandidatePairs::Grain::kLeafPairs);
+    const double covered = list.CoveredFraction(pair, from, -from, 0.0);
+    ASSERT_GT(covered, 0.0);
+    const double exact = BruteForceFirstContact(pair, from, -from);
+    ASSERT_GT(exact, covered);  // past the list: its walk finds nothing
+    pair.candidates = &list;
+    const std::function<bool()> stop = [] { return true; };
+    pair.stop_ccd = &stop;
+    bool stopped = false;
+    const double s = FirstContactAlongTranslation(pair, from, -from, -1.0, nullptr, nullptr, &stopped);
+    pair.stop_ccd = nullptr;
+    pair.candidates = nullptr;
+    EXPECT_TRUE(stopped) << "pose " << k;
+    EXPECT_GT(s, 0.0) << "pose " << k;  // the first part, walked before the stop
+    EXPECT_LT(s, covered) << "pose " << k;
+    EXPECT_FALSE(InCollision(pair, from - s * from)) << "pose " << k;
+    stopped_in_list += stopped && s > 0.0 && s < covered;
+  }
+  EXPECT_EQ(stopped_in_list, 3);
+}
+
 TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterMotion) {
   const Model P = cow_, S = knot1_;
   std::mt19937_64 rng(5);
