@@ -3,10 +3,11 @@
 // must look at: from the pair's candidate list when that covers the
 // configurations (only its near prefix, see candidate_pairs.h), otherwise
 // from the pair's record (the last CCD's or localisation's) when that
-// answers for them (see leaf_pair_record.h), otherwise from a BVH descent. All paths apply the same
-// node test, so the caller sees the same pairs either way, minus those the
-// list proves too far and plus, from a record, a few whose ancestors the
-// descent would have rejected (their features are farther than `distance`).
+// answers for them (see leaf_pair_record.h), otherwise from a BVH descent.
+// All paths apply the same node test, so the caller sees the same pairs
+// either way, minus those the list proves too far and plus, from a record, a
+// few whose ancestors the descent would have rejected (their features are
+// farther than `distance`).
 #include <algorithm>
 #include <type_traits>
 
