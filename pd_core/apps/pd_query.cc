@@ -136,6 +136,10 @@ int main(int argc, char** argv) {
                  "cold: a start stops where it comes this close (fraction of the models' "
                  "size) to an earlier start's path (default 0: off)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--creep-join-iterations", options.creep_join_iterations,
+                 "coherent: from this iteration of a search on, its local model keeps the "
+                 "earlier iterates' constraints still near (default 6; 0: off)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--screen-tol", options.cold_screen_tol,
                  "cold: starts stop once a step gains less than this (fraction of size), "
                  "then the best goes on (default 0: off)")

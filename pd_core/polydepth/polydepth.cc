@@ -272,6 +272,36 @@ struct PolyDepthSolver::Impl {
   ProximityCounters counters;
   std::vector<ContactConstraint> previous_constraints;  // at the previous answer
   std::vector<ContactConstraint> unit_constraints;      // scratch of ClearingDirection
+  // An iteration's local model (`constraints`, joined by the earlier
+  // iterates' when creeping) and the one before it (without the margin).
+  std::vector<ContactConstraint> joined, earlier;
+  // Into `joined`: the constraints localised at q_c and, with `creeping`,
+  // those of the earlier iterates' models within `distance` of q_c by plane
+  // distance (a feature pair the localisation found is not repeated). A
+  // coherent search this long creeps across a basin switch, a few
+  // micrometres per step: each in-projection satisfies the features found
+  // where it starts, and its sweep runs into ones just left behind (fandisk
+  // on elephant: 13 iterations of 3-35 um gains). With those kept, the
+  // switch ends in fewer iterations per query or goes on in the next
+  // (haptic_work, five paths: max work knot1_bunny 43.8k -> 25.1k,
+  // fandisk_elephant 24.2k -> 17.5k, cow_armadillo 17.1k -> 16.3k; the
+  // answers' depths as often 5% shallower as deeper; from the 4th iteration
+  // the same max, more answers deeper, total work +0.6%).
+  void JoinEarlierConstraints(const Vector3& q_c, double distance, bool creeping) {
+    joined.assign(constraints.begin(), constraints.end());
+    if (creeping) {
+      for (const ContactConstraint& e : earlier) {
+        if (e.n_S.dot(q_c) - e.c > distance) continue;
+        const bool found = std::any_of(constraints.begin(), constraints.end(),
+                                       [&](const ContactConstraint& c) {
+                                         return c.kind == e.kind && c.feature_P == e.feature_P &&
+                                                c.feature_S == e.feature_S;
+                                       });
+        if (!found) joined.push_back(e);
+      }
+    }
+    earlier.assign(joined.begin(), joined.end());
+  }
   double anchor_depth = 0.0;  // |q| the coherent answers are measured against (m)
   Vector3 anchor_n_S = Vector3::Zero();  // direction of the answer that set it
   double anchor_probe_depth = 0.0;  // |q| at the last probe along anchor_n_S (m)
@@ -409,10 +439,17 @@ struct PolyDepthSolver::Impl {
       continue;
     }
     off_contact = false;
+    // The local model: the localisation's constraints, and in a long
+    // coherent search also the earlier iterates' that are still about as
+    // near (by plane distance; s.JoinEarlierConstraints).
+    s.JoinEarlierConstraints(q_c, contact_distance,
+                             origin == Initializer::kMotionCoherence &&
+                                 opt.creep_join_iterations > 0 && it >= opt.creep_join_iterations);
     // Aim strictly inside free space: an exactly touching target is
     // ambiguous under round-off, a target `margin` clear is not.
+    for (ContactConstraint& c : s.joined) c.c += margin;
     for (ContactConstraint& c : s.constraints) c.c += margin;
-    const Vector3 q_new = MinNormPoint(s.constraints, tol, &s.qp).q;
+    const Vector3 q_new = MinNormPoint(s.joined, tol, &s.qp).q;
     if (q_new.norm() >= norm_c - tol) break;  // q_c is locally optimal
     // Move toward q_new, landing on the first contact on the way.
     bool touched = false;
@@ -479,6 +516,8 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
   impl_->best_constraints.reserve(1024);
   impl_->previous_constraints.reserve(1024);
   impl_->unit_constraints.reserve(1024);
+  impl_->joined.reserve(1024);
+  impl_->earlier.reserve(1024);
   impl_->starts.reserve(64);
   impl_->trail.reserve(512);
   impl_->qp.unique.reserve(1024);

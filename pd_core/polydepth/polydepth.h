@@ -95,6 +95,11 @@ struct PolyDepthOptions {
   // default (the knob sweep gives its trade per pair). 0 = off.
   double cold_join = 0.0;
   bool warm_start = true;          // honour `coherent` in Solve
+  // From this iteration of a coherent search on (a basin switch creeping a
+  // few micrometres per step), its local model keeps the constraints of the
+  // earlier iterates still within contact_tol of it by plane distance
+  // (polydepth.cc, JoinEarlierConstraints). 0 = off.
+  int creep_join_iterations = 6;
   // Warm-started queries keep a list of the leaf pairs within this distance
   // of the previous contact and reuse it while the probe stays inside that
   // budget (fraction of size). Larger: rebuilt less often, longer to walk.

@@ -3,7 +3,8 @@
 // apart, interpolated here between the two ends), where the followed answer
 // turns away from its earlier direction and grows while a shallower escape
 // opens back toward that direction. Scored against the independent reference
-// PD at the last pose; and, bounded, where the checks of that drift wait.
+// PD at the last pose; and, bounded, where the checks of that drift wait;
+// and a search that creeps across the contact on the same pair.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -104,6 +105,46 @@ TEST(CoherentBasinDrift, AQueryOutOfBudgetLeavesTheCrossCheckToTheNextOne) {
   }
   EXPECT_GT(checked, 0);
   EXPECT_GT(stopped, 20);
+}
+
+
+// A creeping search: the tool at pose 774 of bench_pd's fandisk_elephant
+// haptic path (in the object's frame), then at pose 783 pushed 2 mm deeper.
+// The coherent query there iterates 12 times across the contact, a few
+// micrometres a step; from its 6th iteration on (the default
+// PolyDepthOptions::creep_join_iterations), the local model keeps the earlier
+// iterates' constraints still near, and the search ends in 8, 3.8% deeper.
+TEST(CoherentBasinDrift, ACreepingSearchKeepsTheEarlierIteratesConstraints) {
+  for (const char* f : kMeshes)
+    PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
+  const FandiskDriftPath path;
+  const Isometry3 X_WP0 =
+      Pose(Vector3(0.036932999139936536, 0.010280456190993449, -0.014402275741055941),
+           Quaternion(0.77410547538283159, 0.22529092567685494, 0.55902803830960979,
+                      -0.19362945068789389));
+  const Isometry3 X_WP1 =
+      Pose(Vector3(0.036879519156057521, 0.011236158291516293, -0.015539278097795347 - 2e-3),
+           Quaternion(0.77361633619682546, 0.22486229423482695, 0.55923705497471388,
+                      -0.19547027739290493));
+  const Isometry3 X_WS = Isometry3::Identity();
+  PolyDepthOptions off;
+  off.creep_join_iterations = 0;
+  PolyDepthSolver without(path.tool, path.object, off), with(path.tool, path.object);
+  without.Solve(X_WP0, X_WS, true);
+  with.Solve(X_WP0, X_WS, true);
+  const PenetrationResult a = without.Solve(X_WP1, X_WS, true);
+  const PenetrationResult b = with.Solve(X_WP1, X_WS, true);
+  ASSERT_TRUE(a.valid);
+  ASSERT_TRUE(b.valid);
+  EXPECT_EQ(a.initializer, Initializer::kMotionCoherence);
+  EXPECT_EQ(b.initializer, Initializer::kMotionCoherence);
+  EXPECT_GE(a.iterations, 10);
+  EXPECT_LT(b.iterations, a.iterations - 2);
+  EXPECT_LT(b.box_tests + b.triangle_tests, a.box_tests + a.triangle_tests);
+  // Still an escape, and near the creeping search's.
+  EXPECT_FALSE(ReferenceInCollision(path.tool->mesh(), X_WP1, true, path.object->mesh(), X_WS,
+                                    true, b.translation_W));
+  EXPECT_LE(b.depth, 1.05 * a.depth);
 }
 
 }  // namespace
