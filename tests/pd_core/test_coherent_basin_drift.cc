@@ -12,26 +12,22 @@
 
 #include "pd_core/polydepth/polydepth.h"
 #include "pd_core/reference/reference_pd.h"
+#include "tests/pd_core/fandisk_on_elephant.h"
 #include "tests/pd_core/pair_pd_test_helpers.h"
-#include "tests/pd_core/scaled_mesh_model.h"
-#include "tests/prerequisites.h"
 
 namespace pd {
 namespace {
 
-using Model = std::shared_ptr<const CollisionModel>;
-using test::LoadScaled;
 using test::Pose;
 
-// The path's meshes (each test requires them first: kMeshes) and the tool's
-// pose (in the object's frame S = W) at step i of kSteps, interpolated
-// between the two ends; scales and poses as bench_pd makes them.
-constexpr const char* kMeshes[] = {"fandisk.off", "refined_elephant.off"};
-struct FandiskDriftPath {
+// bench_pd's fandisk_elephant pair (test::FandiskOnElephant: its meshes,
+// scales and prerequisites) and the drift path: the tool's pose (in the
+// object's frame S = W) at step i of kSteps, interpolated between the two
+// ends as bench_pd makes them.
+class CoherentBasinDrift : public test::FandiskOnElephant {
+ protected:
   static constexpr int kSteps = 28;
-  Model tool = LoadScaled("fandisk.off", 0.034431803204303821);
-  Model object = LoadScaled("refined_elephant.off", 0.12763984046501484);
-  Isometry3 X_WP(int i) const {
+  static Isometry3 DriftPose(int i) {
     const Vector3 p0(0.043860045513402203, -0.023996979285694404, 0.026112222875851313);
     const Quaternion q0(0.79013238350542736, 0.24056990352443952, 0.54975462791130669,
                         -0.12484705500881792);
@@ -47,20 +43,14 @@ struct FandiskDriftPath {
 // PolyDepthSolver::Solve), the answer at the last pose was 1.72 mm against
 // the reference's 1.08 (+59%: the bench's worst sampled pose on this path);
 // the 2b cross-check only starts at 1.2x its anchor plus 5e-3 of the size.
-TEST(CoherentBasinDrift, FandiskOnElephantAnswerReturnsToTheShallowerEscape) {
-  for (const char* f : kMeshes)
-    PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
-  const FandiskDriftPath path;
-  const Model& tool = path.tool;
-  const Model& object = path.object;
+TEST_F(CoherentBasinDrift, FandiskOnElephantAnswerReturnsToTheShallowerEscape) {
   const Isometry3 X_WS = Isometry3::Identity();
   PolyDepthSolver solver(tool, object);
-  constexpr int kSteps = FandiskDriftPath::kSteps;
   PenetrationResult r;
   Isometry3 X_WP;
   double shallowest = 1e300;
   for (int i = 0; i <= kSteps; ++i) {
-    X_WP = path.X_WP(i);
+    X_WP = DriftPose(i);
     r = solver.Solve(X_WP, X_WS, true);
     ASSERT_TRUE(r.in_collision) << "pose " << i;
     ASSERT_TRUE(r.valid) << "pose " << i;
@@ -87,18 +77,15 @@ TEST(CoherentBasinDrift, FandiskOnElephantAnswerReturnsToTheShallowerEscape) {
 // has an answer leaves the cross-check and the probe back along the anchor
 // (steps 2b and 2c) to the next query: optional work does not start past the
 // budget. Unbounded, this path runs them.
-TEST(CoherentBasinDrift, AQueryOutOfBudgetLeavesTheCrossCheckToTheNextOne) {
-  for (const char* f : kMeshes)
-    PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
-  const FandiskDriftPath path;
+TEST_F(CoherentBasinDrift, AQueryOutOfBudgetLeavesTheCrossCheckToTheNextOne) {
   PolyDepthOptions bounded;
   bounded.max_work = 1;  // spent by the time any answer exists
-  PolyDepthSolver full(path.tool, path.object), quick(path.tool, path.object, bounded);
+  PolyDepthSolver full(tool, object), quick(tool, object, bounded);
   int checked = 0, stopped = 0;
-  for (int i = 0; i <= FandiskDriftPath::kSteps; ++i) {
-    const PenetrationResult a = full.Solve(path.X_WP(i), Isometry3::Identity(), true);
+  for (int i = 0; i <= kSteps; ++i) {
+    const PenetrationResult a = full.Solve(DriftPose(i), Isometry3::Identity(), true);
     checked += a.cross_checked;
-    const PenetrationResult b = quick.Solve(path.X_WP(i), Isometry3::Identity(), true);
+    const PenetrationResult b = quick.Solve(DriftPose(i), Isometry3::Identity(), true);
     ASSERT_TRUE(b.valid) << "pose " << i;
     stopped += !b.converged;
     EXPECT_FALSE(!b.converged && b.cross_checked) << "pose " << i;
@@ -107,17 +94,13 @@ TEST(CoherentBasinDrift, AQueryOutOfBudgetLeavesTheCrossCheckToTheNextOne) {
   EXPECT_GT(stopped, 20);
 }
 
-
 // A creeping search: the tool at pose 774 of bench_pd's fandisk_elephant
 // haptic path (in the object's frame), then at pose 783 pushed 2 mm deeper.
 // The coherent query there iterates 12 times across the contact, a few
 // micrometres a step; from its 6th iteration on (the default
 // PolyDepthOptions::creep_join_iterations), the local model keeps the earlier
 // iterates' constraints still near, and the search ends in 8, 3.8% deeper.
-TEST(CoherentBasinDrift, ACreepingSearchKeepsTheEarlierIteratesConstraints) {
-  for (const char* f : kMeshes)
-    PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
-  const FandiskDriftPath path;
+TEST_F(CoherentBasinDrift, ACreepingSearchKeepsTheEarlierIteratesConstraints) {
   const Isometry3 X_WP0 =
       Pose(Vector3(0.036932999139936536, 0.010280456190993449, -0.014402275741055941),
            Quaternion(0.77410547538283159, 0.22529092567685494, 0.55902803830960979,
@@ -129,7 +112,7 @@ TEST(CoherentBasinDrift, ACreepingSearchKeepsTheEarlierIteratesConstraints) {
   const Isometry3 X_WS = Isometry3::Identity();
   PolyDepthOptions off;
   off.creep_join_iterations = 0;
-  PolyDepthSolver without(path.tool, path.object, off), with(path.tool, path.object);
+  PolyDepthSolver without(tool, object, off), with(tool, object);
   without.Solve(X_WP0, X_WS, true);
   with.Solve(X_WP0, X_WS, true);
   const PenetrationResult a = without.Solve(X_WP1, X_WS, true);
@@ -142,8 +125,8 @@ TEST(CoherentBasinDrift, ACreepingSearchKeepsTheEarlierIteratesConstraints) {
   EXPECT_LT(b.iterations, a.iterations - 2);
   EXPECT_LT(b.box_tests + b.triangle_tests, a.box_tests + a.triangle_tests);
   // Still an escape, and near the creeping search's.
-  EXPECT_FALSE(ReferenceInCollision(path.tool->mesh(), X_WP1, true, path.object->mesh(), X_WS,
-                                    true, b.translation_W));
+  EXPECT_FALSE(ReferenceInCollision(tool->mesh(), X_WP1, true, object->mesh(), X_WS, true,
+                                    b.translation_W));
   EXPECT_LE(b.depth, 1.05 * a.depth);
 }
 
