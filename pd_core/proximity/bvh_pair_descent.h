@@ -33,7 +33,9 @@
 //                key is then a lower bound on the key of every leaf pair not
 //                yet reached (bounded-time CCD: contact-free up to it).
 // Both orders visit the same leaf pairs when alive is always true, and give
-// a min-over-leaves query (CCD) the same answer.
+// a min-over-leaves query (CCD) the same answer. A descent can also leave
+// its cut (every pair where it ended), and a best-first one start from a
+// cut instead of the roots: descent_front.h.
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -90,6 +92,15 @@ struct DescentEntry {
   double key;
 };
 
+}  // namespace internal
+
+// A node pair (probe BVH node, scene BVH node) by index.
+struct NodePair {
+  int32_t ip, is;
+};
+
+namespace internal {
+
 // The node pairs, the caller's functions and the box-test count of one descent.
 template <typename NodeTest, typename Alive, typename LeafFn>
 struct Descent {
@@ -99,6 +110,17 @@ struct Descent {
   Alive& alive;
   LeafFn& on_leaf_pair;
   int64_t tests = 0;
+  // Optional: the descent's cut (see DescendBvhPairFrom), every pair where
+  // it ended: rejected by the test, a leaf pair reached, or left pending.
+  std::vector<NodePair>* cut = nullptr;
+  void Cut(const DescentEntry& e) {
+    if (cut) cut->push_back({e.ip, e.is});
+  }
+  template <typename Entries>
+  void CutAll(const Entries& entries, size_t n) {
+    if (cut)
+      for (size_t i = 0; i < n; ++i) cut->push_back({entries[i].ip, entries[i].is});
+  }
 
   bool IsLeafPair(const DescentEntry& e) const {
     return nodes_P[e.ip].is_leaf() && nodes_S[e.is].is_leaf();
@@ -124,7 +146,10 @@ struct Descent {
       const int32_t is = split_P ? e.is : (c == 0 ? e.is + 1 : b.right_or_first);
       ++tests;
       double key = e.key;
-      if (test(nodes_P[ip], nodes_S[is], &key)) child[n++] = {ip, is, key};
+      if (test(nodes_P[ip], nodes_S[is], &key))
+        child[n++] = {ip, is, key};
+      else
+        Cut({ip, is, key});
     }
     if (n == 2 && child[0].key < child[1].key) std::swap(child[0], child[1]);
     return n;
@@ -138,9 +163,16 @@ struct Descent {
   bool DepthFirst(Stack& stack, int* top, Pause&& pause) {
     while (*top > 0) {
       const DescentEntry e = stack[--*top];
-      if (!alive(e.key)) continue;
+      if (!alive(e.key)) {
+        Cut(e);
+        continue;
+      }
       if (IsLeafPair(e)) {
-        if (!Leaf(e)) return false;
+        Cut(e);
+        if (!Leaf(e)) {
+          CutAll(stack, *top);
+          return false;
+        }
       } else {
         DescentEntry child[2];
         const int n = Expand(e, child);
@@ -164,6 +196,12 @@ struct Descent {
   template <size_t kHeap, typename Stack, typename Stop>
   bool BestFirst(std::array<DescentEntry, kHeap>& heap, Stack& stack, const DescentEntry& root,
                  Stop& stop, double* stopped_at) {
+    return BestFirst(heap, stack, &root, 1, stop, stopped_at);
+  }
+  // The same from several kept pairs (a cut's) at once.
+  template <size_t kHeap, typename Stack, typename Stop>
+  bool BestFirst(std::array<DescentEntry, kHeap>& heap, Stack& stack, const DescentEntry* roots,
+                 size_t num_roots, Stop& stop, double* stopped_at) {
     size_t size = 0;
     auto push = [&](const DescentEntry& x) {
       size_t i = size++;
@@ -190,20 +228,40 @@ struct Descent {
       if (size > 0) heap[i] = last;
       return top;
     };
-    push(root);
+    for (size_t r = 0; r < num_roots; ++r) {
+      if (size + 1 <= kHeap) {
+        push(roots[r]);
+      } else if (!DepthFirst(stack, roots[r])) {  // more roots than the heap holds
+        for (size_t k = r + 1; k < num_roots; ++k) Cut(roots[k]);
+        CutAll(heap, size);
+        return false;
+      }
+    }
     while (size > 0) {
       if (stop()) {
         *stopped_at = heap[0].key;  // the lowest pending key
+        CutAll(heap, size);
         return true;
       }
       const DescentEntry e = pop();
-      if (!alive(e.key)) return true;  // monotone: every pending pair is later
+      if (!alive(e.key)) {  // monotone: every pending pair is later
+        Cut(e);
+        CutAll(heap, size);
+        return true;
+      }
       if (IsLeafPair(e)) {
-        if (!Leaf(e)) return false;
+        Cut(e);
+        if (!Leaf(e)) {
+          CutAll(heap, size);
+          return false;
+        }
         continue;
       }
       if (size + 2 > kHeap) {
-        if (!DepthFirst(stack, e)) return false;
+        if (!DepthFirst(stack, e)) {
+          CutAll(heap, size);
+          return false;
+        }
         continue;
       }
       DescentEntry child[2];
@@ -237,7 +295,7 @@ template <DescentOrder kOrder = DescentOrder::kDepthFirst, typename NodeTest, ty
 bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&& alive,
                     LeafFn&& on_leaf_pair, ProximityCounters* counters = nullptr,
                     int32_t root_P = 0, int32_t root_S = 0, Stop&& stop = Stop{},
-                    double* stopped_at = nullptr) {
+                    double* stopped_at = nullptr, std::vector<NodePair>* cut = nullptr) {
   static_assert(kOrder == DescentOrder::kBestFirst || std::is_same_v<std::decay_t<Stop>, internal::NeverStop>,
                 "stop() is for best-first descents (a depth-first one pauses: DescentCursor)");
   if (bvh_P.empty() || bvh_S.empty()) return true;
@@ -245,10 +303,13 @@ bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&&
                     std::remove_reference_t<LeafFn>>
       d{bvh_P.nodes(), bvh_S.nodes(), test, alive, on_leaf_pair};
   d.tests = 1;
+  d.cut = cut;
   bool completed = true;
   // The root's parent key: the lowest there is.
   internal::DescentEntry root{root_P, root_S, -std::numeric_limits<double>::infinity()};
-  if (test(d.nodes_P[root_P], d.nodes_S[root_S], &root.key)) {
+  if (!test(d.nodes_P[root_P], d.nodes_S[root_S], &root.key)) {
+    d.Cut(root);
+  } else {
     auto run = [&](auto& stack) {
       if constexpr (kOrder == DescentOrder::kBestFirst) {
         std::array<internal::DescentEntry, kBestFirstHeapCapacity> heap;

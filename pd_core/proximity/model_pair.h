@@ -11,6 +11,7 @@
 namespace pd {
 
 class CandidatePairs;
+class DescentFront;
 struct LeafPairRecord;
 
 struct ModelPair {
@@ -24,6 +25,9 @@ struct ModelPair {
   // localisation (see leaf_pair_record.h): used instead of a descent at the
   // configurations it answers for.
   const LeafPairRecord* recorded = nullptr;
+  // Optional: where the last CCD's full descent ended (descent_front.h);
+  // the next starts there and replaces it.
+  DescentFront* front = nullptr;
   // Optional cost accounting of the queries on this pair.
   ProximityCounters* counters = nullptr;
   // Optional: asked during a CCD's best-first descent; true ends it early

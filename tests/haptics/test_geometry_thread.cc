@@ -203,14 +203,15 @@ TEST(GeometryThread, QueriesOf20msStillGetAWrenchEveryTick) {
   EXPECT_EQ(s.renderer.limiter.nonfinite, 0);
 }
 
-// The same on a real mesh scene whose cold queries really take 4 ms or more
-// (6-15 ms at c86ceb8; tens of ms before issue 10's PolyDepth speedups):
+// The same on a real mesh scene whose cold queries really take 4 ms or more:
 // CGAL knot1 (6.4k triangles, 5 cm) on the refined elephant
 // (89k triangles; bench/scenes/knot_tool_elephant_bunny_164k.yaml without the
-// bunny), PolyDepth with no time budget. The device jumps 7 mm along the
-// elephant's back every 150 ms (a new contact far from the last). The test
-// measures the queries' times (worker, polled) and asserts the longest took
-// at least kSlowQuery: if PolyDepth gets that fast here, pick a harder scene.
+// bunny), PolyDepth with no time budget and no warm start (every query
+// cold: the 7 mm jumps below were warm queries of 6-15 ms at c86ceb8, under
+// 2 ms at the CCD's descent cut). The device jumps 7 mm along the
+// elephant's back every 150 ms. The test measures the queries' times
+// (worker, polled) and asserts the longest took at least kSlowQuery: if
+// PolyDepth gets that fast here, pick a harder scene.
 TEST(GeometryThread, RealMeshColdQueriesOfManyMsStillGetAWrenchEveryTick) {
   PD_REQUIRE_FILE(test::MeshDir() + "/refined_elephant.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(test::MeshDir() + "/knot1.off", "run scripts/fetch_meshes.sh");
@@ -221,7 +222,9 @@ TEST(GeometryThread, RealMeshColdQueriesOfManyMsStillGetAWrenchEveryTick) {
   config.contact.geometry_budget_s = 10.0;  // queries run to convergence
   config.servo.soft_engage_s = 0.0;
   const SceneModels models = BuildSceneModels(config);
-  HapticRenderer renderer(config, models);
+  pd::PolyDepthOptions cold;
+  cold.warm_start = false;
+  HapticRenderer renderer(config, models, cold);
   LatestValue<PoseSample> poses;
   TimedSink sink(4000);
   ServoLoopOptions options;
