@@ -207,7 +207,7 @@ struct PolyDepthSolver::Impl {
   std::mt19937_64 rng;
   CandidatePairs candidates;  // leaf pairs near the last contact (warm start)
   LeafPairRecord record;      // leaf pairs near the last recorded out-projection
-  DescentFront front;         // where the last full CCD descent ended
+  DescentFront front;         // where the last full descent ended
   bool list_follows_iterates = false;  // this query may still move the list to an iterate
   // PolyDepthOptions::defer_list_builds: the list being built in
   // PrepareNext (it replaces `candidates` once complete), and the build the
@@ -575,7 +575,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // The localisation's distance plus room for the landing's margin (OutProject).
   s.record.distance = (options_.contact_tol + 2.0 * options_.separation_margin) * pair.size();
   pair.recorded = &s.record;
-  s.front.Invalidate();  // a query's own CCDs only (see translational_ccd.cc)
+  s.front.Invalidate();  // within a query only (descent_front.h)
   pair.front = &s.front;
   s.counters = ProximityCounters{};
   pair.counters = &s.counters;

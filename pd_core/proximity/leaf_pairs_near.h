@@ -13,6 +13,7 @@
 
 #include "pd_core/proximity/bvh_pair_descent.h"
 #include "pd_core/proximity/candidate_pairs.h"
+#include "pd_core/proximity/descent_front.h"
 #include "pd_core/proximity/leaf_pair_record.h"
 #include "pd_core/proximity/model_pair.h"
 
@@ -79,6 +80,14 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
       if (!on_leaf_pair(e.ip, e.is)) break;
     }
     if (pair.counters) pair.counters->box_tests += tested;
+    return;
+  }
+  // From the last descent's cut where it ended near here (descent_front.h).
+  if (DescentFront* front = FrontNear(pair, q_a_S)) {
+    DescendBvhPairFromFront<DescentOrder::kDepthFirst>(pair.P.bvh(), pair.S.bvh(), node_test,
+                                                       [](double) { return true; }, on_leaf_pair,
+                                                       pair.counters, front, kMaxFrontPairs);
+    front->q_S = q_b_S;
     return;
   }
   DescendBvhPair(pair.P.bvh(), pair.S.bvh(), node_test, [](double) { return true; }, on_leaf_pair,

@@ -25,8 +25,9 @@ struct ModelPair {
   // localisation (see leaf_pair_record.h): used instead of a descent at the
   // configurations it answers for.
   const LeafPairRecord* recorded = nullptr;
-  // Optional: where the last CCD's full descent ended (descent_front.h);
-  // the next starts there and replaces it.
+  // Optional: where the last full descent (CCD, localisation, collision
+  // test) ended (descent_front.h); the next one near there starts there and
+  // replaces it.
   DescentFront* front = nullptr;
   // Optional cost accounting of the queries on this pair.
   ProximityCounters* counters = nullptr;

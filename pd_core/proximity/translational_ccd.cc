@@ -15,18 +15,6 @@ namespace {
 // A list walk's part whose prefix holds more than this fraction of the
 // covered part's walks the covered part at once (below).
 constexpr double kWalkCoveredAtOnce = 0.5;
-// A descent starts at the last one's cut when the sweep starts within this
-// fraction of the pair's size of where the last ended: the CCDs of one
-// PolyDepth search, each from the last one's landing. Sweeps from elsewhere
-// (a cold query's next start, a cross-check probe) would find the cut
-// refined around another contact: on cold random queries (bench_pd, 48
-// cases) box and triangle tests +41-81% without this test, +3% with it (at
-// 1e-4 as at 1e-3). A cut only grows (no merging back: the hierarchies
-// keep no parent links), so past kMaxFrontPairs the descent starts at the
-// roots; the CCDs of one query rarely reach it. Kept across queries the
-// cuts grew fine: haptic_work total work +19% (+5% capped at 1500).
-constexpr double kFrontReuseDistance = 1e-4;
-constexpr size_t kMaxFrontPairs = 4096;
 
 // Earliest contact of one probe triangle swept along sweep_S with one scene
 // triangle, over the features each owns. Lowers *s_best on a hit.
@@ -186,15 +174,14 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
     }
     return hit ? s_best : -1.0;
   };
-  // A sweep from where the last one ended (a search's next iteration)
+  // A sweep from where the last descent ended (a search's next iteration)
   // starts at that descent's cut (descent_front.h), and leaves its own.
-  DescentFront* front = pair.front;
-  if (front != nullptr && (offset_S - front->q_S).norm() > kFrontReuseDistance * pair.size())
-    front->Invalidate();
+  DescentFront* front = FrontNear(pair, offset_S);
   auto descend = [&](auto&& on_leaf) {
     if (front != nullptr) {
-      DescendBvhPairFromFront(bvh_P, bvh_S, may_meet, before_best, on_leaf, pair.counters, front,
-                              kMaxFrontPairs, stop, &free_until);
+      DescendBvhPairFromFront<DescentOrder::kBestFirst>(bvh_P, bvh_S, may_meet, before_best,
+                                                        on_leaf, pair.counters, front,
+                                                        kMaxFrontPairs, stop, &free_until);
       front->q_S = offset_S + (hit ? s_best : 1.0) * sweep_S;
     } else {
       DescendBvhPair<DescentOrder::kBestFirst>(bvh_P, bvh_S, may_meet, before_best, on_leaf,

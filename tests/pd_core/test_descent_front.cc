@@ -3,17 +3,24 @@
 // the cut holds each leaf pair of the full pair tree under exactly one of
 // its pairs; a descent from a cut reaches the leaf pairs a descent from the
 // roots reaches, with fewer box tests when it looks near where the cut was
-// made, and leaves a cut of its own.
+// made, and leaves a cut of its own. Localisations and collision tests near
+// the last descent's end start there and answer as from the roots.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <tuple>
 #include <utility>
 #include <vector>
 
+#include "pd_core/geometry/make_shapes.h"
+#include "pd_core/mesh/collision_model.h"
+#include "pd_core/polydepth/contact_constraints.h"
 #include "pd_core/proximity/bvh_pair_descent.h"
 #include "pd_core/proximity/descent_front.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/model_pair.h"
 #include "tests/pd_core/synthetic_bvh.h"
 
 namespace pd {
@@ -69,6 +76,7 @@ auto ShiftedOverlap(double shift) {
   };
 }
 
+template <DescentOrder kOrder = DescentOrder::kBestFirst>
 std::set<std::pair<int, int>> Descend(const Bvh& a, const Bvh& b, double shift,
                                       DescentFront* front, ProximityCounters* counters) {
   std::set<std::pair<int, int>> reached;
@@ -77,11 +85,11 @@ std::set<std::pair<int, int>> Descend(const Bvh& a, const Bvh& b, double shift,
     return true;
   };
   if (front != nullptr) {
-    DescendBvhPairFromFront(a, b, ShiftedOverlap(shift), [](double) { return true; }, leaf,
-                            counters, front, 1u << 20, internal::NeverStop{}, nullptr);
+    DescendBvhPairFromFront<kOrder>(a, b, ShiftedOverlap(shift), [](double) { return true; },
+                                    leaf, counters, front, 1u << 20);
   } else {
-    DescendBvhPair<DescentOrder::kBestFirst>(a, b, ShiftedOverlap(shift),
-                                             [](double) { return true; }, leaf, counters);
+    DescendBvhPair<kOrder>(a, b, ShiftedOverlap(shift), [](double) { return true; }, leaf,
+                           counters);
   }
   return reached;
 }
@@ -103,7 +111,7 @@ TEST(DescentFront, ACutHoldsEachLeafPairOnceHoweverTheDescentEnds) {
     int pops = 0, leaves = 0;
     auto stop = [&] { return e.stop_after >= 0 && ++pops > e.stop_after; };
     auto leaf = [&](int, int) { return e.leaves_before_stop < 0 || ++leaves < e.leaves_before_stop; };
-    DescendBvhPairFromFront(a, b, ShiftedOverlap(0.3),
+    DescendBvhPairFromFront<DescentOrder::kBestFirst>(a, b, ShiftedOverlap(0.3),
                             [&](double key) { return key < e.alive_below; }, leaf, nullptr,
                             &front, 1u << 20, stop, nullptr);
     ASSERT_GT(front.size(), 0u) << e.name;
@@ -112,30 +120,41 @@ TEST(DescentFront, ACutHoldsEachLeafPairOnceHoweverTheDescentEnds) {
     EXPECT_EQ(std::count(holders.begin(), holders.end(), 1), static_cast<long>(leaf_pairs))
         << e.name;
     // A descent from that cut leaves a complete cut too.
-    DescendBvhPairFromFront(a, b, ShiftedOverlap(1.7), always, [](int, int) { return true; },
-                            nullptr, &front, 1u << 20, internal::NeverStop{}, nullptr);
+    DescendBvhPairFromFront<DescentOrder::kBestFirst>(a, b, ShiftedOverlap(1.7), always,
+                                                      [](int, int) { return true; }, nullptr,
+                                                      &front, 1u << 20);
     const std::vector<int> again = Holders(a, b, front.pairs());
     EXPECT_EQ(std::count(again.begin(), again.end(), 1), static_cast<long>(leaf_pairs))
         << e.name << ", then from its cut";
   }
 }
 
-TEST(DescentFront, FromACutItReachesWhatADescentFromTheRootsReaches) {
+template <DescentOrder kOrder>
+void ExpectFromACutItReachesWhatADescentFromTheRootsReaches() {
   const Bvh a = Balanced(6, 1.0), b = Balanced(6, 1.0);
   for (double next : {0.35, 0.5, 3.2, -20.0}) {
     DescentFront front;
     ProximityCounters first;
-    const auto made_at = Descend(a, b, 0.3, &front, &first);  // empty front: from the roots
-    EXPECT_EQ(made_at, Descend(a, b, 0.3, nullptr, nullptr));
+    const auto made_at = Descend<kOrder>(a, b, 0.3, &front, &first);  // empty: from the roots
+    EXPECT_EQ(made_at, Descend<kOrder>(a, b, 0.3, nullptr, nullptr));
     ProximityCounters from_cut, from_roots;
-    const auto reached = Descend(a, b, next, &front, &from_cut);
-    EXPECT_EQ(reached, Descend(a, b, next, nullptr, &from_roots)) << "shift " << next;
+    const auto reached = Descend<kOrder>(a, b, next, &front, &from_cut);
+    EXPECT_EQ(reached, Descend<kOrder>(a, b, next, nullptr, &from_roots)) << "shift " << next;
+    // The cut it leaves is complete.
+    const std::vector<int> holders = Holders(a, b, front.pairs());
+    EXPECT_EQ(std::count(holders.begin(), holders.end(), 1),
+              static_cast<long>(holders.size()));
     // Near where the cut was made, the pairs above it are not tested again.
     if (std::abs(next - 0.3) < 0.3) {
       EXPECT_FALSE(reached.empty());
       EXPECT_LT(from_cut.box_tests, from_roots.box_tests * 2 / 3) << "shift " << next;
     }
   }
+}
+
+TEST(DescentFront, FromACutItReachesWhatADescentFromTheRootsReaches) {
+  ExpectFromACutItReachesWhatADescentFromTheRootsReaches<DescentOrder::kBestFirst>();
+  ExpectFromACutItReachesWhatADescentFromTheRootsReaches<DescentOrder::kDepthFirst>();
 }
 
 TEST(DescentFront, ACutLargerThanTheCapStartsAtTheRoots) {
@@ -146,14 +165,72 @@ TEST(DescentFront, ACutLargerThanTheCapStartsAtTheRoots) {
   ASSERT_GT(made, 10u);
   ProximityCounters capped, roots;
   std::set<std::pair<int, int>> reached;
-  DescendBvhPairFromFront(a, b, ShiftedOverlap(0.4), [](double) { return true; },
+  DescendBvhPairFromFront<DescentOrder::kBestFirst>(a, b, ShiftedOverlap(0.4), [](double) { return true; },
                           [&](int ip, int is) {
                             reached.insert({ip, is});
                             return true;
                           },
-                          &capped, &front, made - 1, internal::NeverStop{}, nullptr);
+                          &capped, &front, made - 1);
   EXPECT_EQ(reached, Descend(a, b, 0.4, nullptr, &roots));
   EXPECT_EQ(capped.box_tests, roots.box_tests);  // the same descent, from the roots
+}
+
+// PolyDepth's steps near a contact: localisations and collision tests at
+// configurations a few thousandths of the pair's size apart, on meshes.
+TEST(DescentFront, LocalisationsAndCollisionTestsNearTheLastStartAtItsCut) {
+  auto P = CollisionModel::Build(MakeIcosphere(0.3, 4));
+  auto S = CollisionModel::Build(MakeTorusKnot(2, 3, 0.2, 1.0, 256, 16));
+  const Isometry3 X_WS = Isometry3::Identity();
+  Isometry3 X_WP = Isometry3::Identity();
+  X_WP.translation() = S->mesh().vertices[0] + Vector3(0.05, 0.0, 0.0);
+  ModelPair with(*P, *S, X_WP, X_WS);
+  const ModelPair without(*P, *S, X_WP, X_WS);
+  DescentFront front;
+  ProximityCounters cut_counters, root_counters;
+  with.front = &front;
+  with.counters = &cut_counters;
+  ModelPair counted = without;
+  counted.counters = &root_counters;
+  using Key = std::tuple<int, int, int>;
+  auto keys = [](const std::vector<ContactConstraint>& cs) {
+    std::set<Key> k;
+    for (const ContactConstraint& c : cs)
+      k.insert({static_cast<int>(c.kind), c.feature_P, c.feature_S});
+    return k;
+  };
+  const double step = 1e-3 * with.size();  // within kFrontReuseDistance
+  const double distance = 1e-3 * with.size();  // 10x PolyDepth's contact distance
+  int colliding = 0, constraints = 0;
+  for (int k = 0; k < 12; ++k) {
+    const Vector3 q = k * step * Vector3(0.6, 0.8, 0.0);
+    std::vector<ContactConstraint> a, b;
+    CollectContactConstraints(with, q, distance, &a);
+    CollectContactConstraints(counted, q, distance, &b);
+    EXPECT_EQ(keys(a), keys(b)) << "step " << k;
+    constraints += static_cast<int>(a.size());
+    const bool hit = InCollision(with, q);
+    EXPECT_EQ(hit, InCollision(counted, q)) << "step " << k;
+    colliding += hit;
+    if (k == 0) {  // the first starts at the roots: no cut yet
+      cut_counters = ProximityCounters{};
+      root_counters = ProximityCounters{};
+    }
+  }
+  EXPECT_GT(constraints, 100);
+  EXPECT_GT(colliding, 3);
+  // Measured: 22.1k box tests against 38.4k from the roots.
+  EXPECT_LT(cut_counters.box_tests, root_counters.box_tests * 3 / 4)
+      << cut_counters.box_tests << " vs " << root_counters.box_tests;
+  // From elsewhere: the roots, test for test.
+  ProximityCounters far_cut, far_roots;
+  with.counters = &far_cut;
+  counted.counters = &far_roots;
+  const Vector3 far = 0.1 * with.size() * Vector3(0.0, 0.0, 1.0);
+  std::vector<ContactConstraint> a, b;
+  CollectContactConstraints(with, far, distance, &a);
+  CollectContactConstraints(counted, far, distance, &b);
+  EXPECT_EQ(keys(a), keys(b));
+  EXPECT_EQ(far_cut.box_tests, far_roots.box_tests);
 }
 
 }  // namespace
