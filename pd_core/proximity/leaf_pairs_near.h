@@ -1,9 +1,11 @@
 #pragma once
 // The leaf pairs a query at a configuration (or along a segment of them)
 // must look at: from the pair's candidate list when that covers the
-// configurations (only its near prefix, see candidate_pairs.h), otherwise
-// from the pair's record (the last CCD's or localisation's) when that
-// answers for them (see leaf_pair_record.h), otherwise from a BVH descent.
+// configurations (only its near prefix, see candidate_pairs.h), or from the
+// pair's record (the last CCD's or localisation's) when that answers for
+// them (see leaf_pair_record.h), whichever holds fewer; otherwise from a
+// BVH descent (from the last descent's cut when that ended near here, see
+// descent_front.h).
 // All paths apply the same node test, so the caller sees the same pairs
 // either way, minus those the list proves too far and plus, from a record, a
 // few whose ancestors the descent would have rejected (their features are
@@ -32,13 +34,21 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
     else
       return may_touch(a, b);
   };
+  const LeafPairRecord* record = pair.recorded;
+  const bool record_covers = record != nullptr && record->Covers(q_a_S, q_b_S, distance);
   const CandidatePairs* list = pair.candidates;
   if (list != nullptr) {
     double unused_key;
     const double displacement =
         std::max(list->Displacement(pair, q_a_S), list->Displacement(pair, q_b_S));
-    if (displacement + distance < list->radius()) {
-      const int n = list->NearCount(distance, displacement);
+    const int n =
+        displacement + distance < list->radius() ? list->NearCount(distance, displacement) : -1;
+    // A record that answers here and holds fewer pairs than the list's
+    // prefix is walked instead: a dense list the probe has moved across
+    // walks most of its entries for every check just off an answer
+    // (fandisk_elephant: three collision tests 0.2 um apart, 1.2k tests
+    // each; haptic_work total work -0.5%, fandisk -1.4%, same answers).
+    if (n >= 0 && !(record_covers && record->pairs.size() < static_cast<size_t>(n))) {
       const auto& entries = list->entries();
       const auto& nodes_P = pair.P.bvh().nodes();
       const auto& nodes_S = pair.S.bvh().nodes();
@@ -66,8 +76,7 @@ void ForEachLeafPairNear(const ModelPair& pair, const Vector3& q_a_S, const Vect
       return;
     }
   }
-  const LeafPairRecord* record = pair.recorded;
-  if (record != nullptr && record->Covers(q_a_S, q_b_S, distance)) {
+  if (record_covers) {
     // The recorded leaf pairs near these configurations: the same node
     // test on each (the pairs a descent would find are among them).
     double unused_key;

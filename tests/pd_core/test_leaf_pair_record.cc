@@ -13,6 +13,7 @@
 #include "pd_core/geometry/make_shapes.h"
 #include "pd_core/polydepth/contact_constraints.h"
 #include "pd_core/polydepth/support_plane_starts.h"
+#include "pd_core/proximity/candidate_pairs.h"
 #include "pd_core/proximity/leaf_pair_record.h"
 #include "pd_core/proximity/mesh_collision.h"
 #include "pd_core/proximity/model_pair.h"
@@ -144,6 +145,60 @@ TEST(LeafPairRecord, CollisionTestsInsideTheBallWalkItAndAnswerAsADescent) {
   EXPECT_GT(free, 20);
   EXPECT_LT(walked.box_tests, descended.box_tests / 2)
       << walked.box_tests << " vs " << descended.box_tests;
+}
+
+// Where a candidate list covers too, a check walks whichever of the two
+// holds fewer pairs: the record beside a list built before the probe turned
+// by 3 degrees (the turn bounds every entry's motion: its near prefix holds
+// many entries, few of them skipped along their axes), a narrow list built
+// here beside the record. Both answer as a descent does.
+TEST(LeafPairRecord, BesideAListTheSmallerOfTheTwoIsWalked) {
+  const TouchingPair t(7);
+  ModelPair pair = t.Pair();
+  LeafPairRecord record;
+  record.distance = 1e-3 * pair.size();
+  std::vector<ContactConstraint> cs;
+  CollectContactConstraints(pair, t.q_c, record.distance, &cs, &record);
+  ASSERT_TRUE(record.valid);
+  CandidatePairs wide, narrow;
+  Isometry3 X_WP_before = t.X_WP;
+  X_WP_before.linear() =
+      Eigen::AngleAxisd(3.0 * M_PI / 180.0, Vector3(1, 1, 0).normalized()).toRotationMatrix() *
+      t.X_WP.linear();
+  wide.Build(ModelPair(*t.P, *t.S, X_WP_before, Isometry3::Identity()), t.q_c,
+             0.05 * pair.size());
+  narrow.Build(pair, t.q_c, 2e-4 * pair.size());
+  ASSERT_GT(wide.entries().size(), 2 * record.pairs.size());
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> g;
+  int64_t wide_tests = 0, narrow_tests = 0;
+  int colliding = 0;
+  const int points = 20;
+  for (int k = 0; k < points; ++k) {
+    const Vector3 q = t.q_c + 1e-4 * pair.size() * Vector3(g(rng), g(rng), g(rng)).normalized();
+    pair.recorded = nullptr;
+    pair.candidates = nullptr;
+    const bool by_descent = InCollision(pair, q);
+    colliding += by_descent;
+    pair.recorded = &record;
+    for (const CandidatePairs* list : {&wide, &narrow}) {
+      pair.candidates = list;
+      ProximityCounters counters;
+      pair.counters = &counters;
+      EXPECT_EQ(InCollision(pair, q), by_descent) << "point " << k;
+      (list == &wide ? wide_tests : narrow_tests) += counters.box_tests;
+      pair.counters = nullptr;
+    }
+  }
+  EXPECT_GT(colliding, 0);
+  EXPECT_LT(colliding, points);
+  // A record walk tests each of its pairs at most once (a collision test
+  // stops at the first intersecting pair); the narrow list holds fewer.
+  // Measured: 795 box tests beside the turned list (1340 walking that
+  // list), 495 with the narrow list, against 940 for 20 record walks.
+  const int64_t record_walks = points * static_cast<int64_t>(record.pairs.size());
+  EXPECT_LE(wide_tests, record_walks);
+  EXPECT_LT(narrow_tests, record_walks);
 }
 
 // A fused localisation that meets an intersecting triangle pair has not
