@@ -117,6 +117,14 @@ bool DescendBvhPairFromFront(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test
   auto run = [&](auto& stack) {
     internal::DescentEntry e;
     if constexpr (kOrder == DescentOrder::kBestFirst) {
+      // The caller's stop first, as a descent from the roots asks it after
+      // one test: with no pair tested, nothing is known beyond -inf, and
+      // the cut stays as it is.
+      if (stop()) {
+        if (stopped_at) *stopped_at = -std::numeric_limits<double>::infinity();
+        front->next_.assign(cut.begin(), cut.end());
+        return;
+      }
       // Every pair of the cut tested first: the heap orders them all.
       auto& kept = front->kept_;
       kept.clear();

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -155,6 +156,31 @@ void ExpectFromACutItReachesWhatADescentFromTheRootsReaches() {
 TEST(DescentFront, FromACutItReachesWhatADescentFromTheRootsReaches) {
   ExpectFromACutItReachesWhatADescentFromTheRootsReaches<DescentOrder::kBestFirst>();
   ExpectFromACutItReachesWhatADescentFromTheRootsReaches<DescentOrder::kDepthFirst>();
+}
+
+// A caller out of budget before the descent starts (a bounded CCD): no pair
+// of the cut is tested, nothing is known contact-free (-inf), the cut stays.
+TEST(DescentFront, StoppedAtOnceItTestsNothingAndKeepsTheCut) {
+  const Bvh a = Balanced(6, 1.0), b = Balanced(6, 1.0);
+  DescentFront front;
+  Descend(a, b, 0.3, &front, nullptr);
+  const std::vector<NodePair> before = front.pairs();
+  ASSERT_GT(before.size(), 10u);
+  ProximityCounters counters;
+  double stopped_at = 7.0;
+  int leaves = 0;
+  DescendBvhPairFromFront<DescentOrder::kBestFirst>(
+      a, b, ShiftedOverlap(0.35), [](double) { return true; },
+      [&](int, int) { return ++leaves > 0; }, &counters, &front, 1u << 20, [] { return true; },
+      &stopped_at);
+  EXPECT_EQ(counters.box_tests, 0);
+  EXPECT_EQ(leaves, 0);
+  EXPECT_EQ(stopped_at, -std::numeric_limits<double>::infinity());
+  ASSERT_EQ(front.size(), before.size());
+  for (size_t i = 0; i < before.size(); ++i) {
+    EXPECT_EQ(front.pairs()[i].ip, before[i].ip);
+    EXPECT_EQ(front.pairs()[i].is, before[i].is);
+  }
 }
 
 TEST(DescentFront, ACutLargerThanTheCapStartsAtTheRoots) {
