@@ -283,6 +283,20 @@ namespace internal {
 struct NeverStop {
   bool operator()() const { return false; }
 };
+// Calls run(stack) with a depth-first stack deep enough for the two
+// hierarchies: a fixed array for every BVH the builder makes, else a heap
+// vector of the right size.
+template <typename Run>
+void WithDescentStack(const Bvh& bvh_P, const Bvh& bvh_S, Run&& run) {
+  const int needed = bvh_P.depth() + bvh_S.depth() + 1;
+  if (needed <= kDescentStackCapacity) {
+    std::array<DescentEntry, kDescentStackCapacity> stack;
+    run(stack);
+  } else {
+    std::vector<DescentEntry> stack(needed);
+    run(stack);
+  }
+}
 }  // namespace internal
 
 // Descends from the pair of subtrees rooted at nodes root_P and root_S (by
@@ -319,14 +333,7 @@ bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&&
         completed = d.DepthFirst(stack, root);
       }
     };
-    const int needed = bvh_P.depth() + bvh_S.depth() + 1;
-    if (needed <= kDescentStackCapacity) {
-      std::array<internal::DescentEntry, kDescentStackCapacity> stack;
-      run(stack);
-    } else {
-      std::vector<internal::DescentEntry> stack(needed);
-      run(stack);
-    }
+    internal::WithDescentStack(bvh_P, bvh_S, run);
   }
   if (counters) counters->box_tests += d.tests;
   return completed;

@@ -146,14 +146,7 @@ bool DescendBvhPairFromFront(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test
       }
     }
   };
-  const int needed = bvh_P.depth() + bvh_S.depth() + 1;
-  if (needed <= kDescentStackCapacity) {
-    std::array<internal::DescentEntry, kDescentStackCapacity> stack;
-    run(stack);
-  } else {
-    std::vector<internal::DescentEntry> stack(needed);
-    run(stack);
-  }
+  internal::WithDescentStack(bvh_P, bvh_S, run);
   std::swap(front->cut_, front->next_);
   if (counters) counters->box_tests += d.tests;
   return completed;

@@ -69,6 +69,15 @@ struct TouchingPair {
     q_c = from - (s - 1e-8 * pair.size() / from.norm()) * from;
   }
   ModelPair Pair() const { return ModelPair(*P, *S, X_WP, Isometry3::Identity()); }
+  // A localisation's record at the contact, of distance 1e-3 of the size.
+  LeafPairRecord RecordAtContact() const {
+    const ModelPair pair = Pair();
+    LeafPairRecord record;
+    record.distance = 1e-3 * pair.size();
+    std::vector<ContactConstraint> cs;
+    CollectContactConstraints(pair, q_c, record.distance, &cs, &record);
+    return record;
+  }
 };
 
 // A localisation asked to record keeps every leaf pair within the record's
@@ -118,10 +127,7 @@ TEST(LeafPairRecord, CollisionTestsInsideTheBallWalkItAndAnswerAsADescent) {
   for (int seed : {4, 5, 6}) {
     const TouchingPair t(seed);
     ModelPair pair = t.Pair();
-    LeafPairRecord record;
-    record.distance = 1e-3 * pair.size();
-    std::vector<ContactConstraint> cs;
-    CollectContactConstraints(pair, t.q_c, record.distance, &cs, &record);
+    const LeafPairRecord record = t.RecordAtContact();
     ASSERT_TRUE(record.valid);
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> g;
@@ -155,10 +161,7 @@ TEST(LeafPairRecord, CollisionTestsInsideTheBallWalkItAndAnswerAsADescent) {
 TEST(LeafPairRecord, BesideAListTheSmallerOfTheTwoIsWalked) {
   const TouchingPair t(7);
   ModelPair pair = t.Pair();
-  LeafPairRecord record;
-  record.distance = 1e-3 * pair.size();
-  std::vector<ContactConstraint> cs;
-  CollectContactConstraints(pair, t.q_c, record.distance, &cs, &record);
+  const LeafPairRecord record = t.RecordAtContact();
   ASSERT_TRUE(record.valid);
   CandidatePairs wide, narrow;
   Isometry3 X_WP_before = t.X_WP;
