@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
                  "PolyDepthOptions::max_work (box + triangle tests; 0 = unbounded)");
   app.add_option("--max-time-us", options.max_time_us,
                  "PolyDepthOptions::max_time_us (us; 0 = unbounded; makes the work load-dependent)");
+  app.add_option("--creep-join-iterations", options.creep_join_iterations,
+                 "PolyDepthOptions::creep_join_iterations for an A/B (0 = off)");
   app.add_flag("--defer", options.defer_list_builds,
                "PolyDepthOptions::defer_list_builds: list builds run in PrepareNext after each answer (to the end); their work is reported apart");
   CLI11_PARSE(app, argc, argv);
