@@ -160,6 +160,7 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   std::vector<const HapticStep*> by_time;  // colliding queries (sorted slowest first below)
   std::vector<const HapticStep*> by_inquery_time;  // the same, rebuilds in the query
   std::vector<double> busy_us, prepare_us, inquery_us;
+  std::vector<double> in_range_us, deeper_us;
   double inquery_total_us = 0.0;
   std::vector<pd::PenetrationResult::Work> works;
   double build_us = 0.0;
@@ -172,6 +173,7 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
     }
     ++m.colliding;
     pd_us.push_back(s.pd.time_us);
+    (s.pd.depth <= kHapticTargetMaxDepth ? in_range_us : deeper_us).push_back(s.pd.time_us);
     busy_us.push_back(s.pd.time_us + s.prepare_us);
     prepare_us.push_back(s.prepare_us);
     m.lists_completed += s.lists_completed;
@@ -214,6 +216,8 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
     }
   }
   m.pd_us = Summarize(pd_us);
+  m.in_range_us = Summarize(in_range_us);
+  m.deeper_us = Summarize(deeper_us);
   m.pd_free_us = Summarize(free_us);
   m.fcl_us = Summarize(fcl_us);
   m.p999_us = Percentile(pd_us, 99.9);
