@@ -34,8 +34,8 @@
 //                yet reached (bounded-time CCD: contact-free up to it).
 // Both orders visit the same leaf pairs when alive is always true, and give
 // a min-over-leaves query (CCD) the same answer. A descent can also leave
-// its cut (every pair where it ended), and a best-first one start from a
-// cut instead of the roots: descent_front.h.
+// its cut (every pair where it ended), and the next one start from that cut
+// instead of the roots: descent_front.h.
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -110,7 +110,7 @@ struct Descent {
   Alive& alive;
   LeafFn& on_leaf_pair;
   int64_t tests = 0;
-  // Optional: the descent's cut (see DescendBvhPairFrom), every pair where
+  // Optional: the descent's cut (see descent_front.h), every pair where
   // it ended: rejected by the test, a leaf pair reached, or left pending.
   std::vector<NodePair>* cut = nullptr;
   void Cut(const DescentEntry& e) {

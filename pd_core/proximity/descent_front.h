@@ -140,7 +140,7 @@ bool DescendBvhPairFromFront(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test
       // the cut than it needs; the rest is cut again as it stands.
       for (size_t r = 0; r < cut.size(); ++r) {
         if (!test_pair(r, &e) || d.DepthFirst(stack, e)) continue;
-        for (size_t k = r + 1; k < cut.size(); ++k) front->next_.push_back(cut[k]);
+        d.CutAll(cut.data() + r + 1, cut.size() - r - 1);
         completed = false;
         break;
       }
