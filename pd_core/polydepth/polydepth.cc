@@ -338,6 +338,12 @@ struct PolyDepthSolver::Impl {
   Vector3 previous_n_S = Vector3::Zero();
   RelativePose previous_X_SP;
 
+  // The configuration of this query last verified free by a full collision
+  // test (so the final check need not repeat it), and the one an iterate's
+  // localisation last found with no surfaces crossing (the final check of
+  // it needs only the containment test).
+  Vector3 verified_q_S = Vector3::Constant(1e300);
+  Vector3 surfaces_free_q_S = Vector3::Constant(1e300);
   // Where `constraints` were last localised (they are reused for regions).
   Vector3 constraints_q_S = Vector3::Constant(1e300);
   // The localisation Iterate made at the best answer when it was the best
@@ -424,10 +430,18 @@ struct PolyDepthSolver::Impl {
     // goes on from there: the incremental update's last free point, whose
     // localisation was repeated, up to 2.6k tests where no list covered it;
     // haptic_work total work -1.3%, cow_armadillo p99 -5%).
-    if (q_c == s.best_constraints_q_S)
+    if (q_c == s.best_constraints_q_S) {
       s.constraints = s.best_constraints;
-    else
+    } else if (CollectContactConstraintsIfSurfacesFree(pair, q_c, contact_distance,
+                                                       &s.constraints, nullptr, &s.record)) {
+      // The same pass tests the surfaces: when q_c ends the search, the
+      // answer's verification needs only the containment test.
+      s.surfaces_free_q_S = q_c;
+    } else {
+      // A landing whose surfaces cross (round-off): localise it in full,
+      // and let the verification judge it.
       CollectContactConstraints(pair, q_c, contact_distance, &s.constraints, &s.record);
+    }
     s.constraints_q_S = q_c;
     if (q_c == s.best_q_S) {
       s.best_constraints = s.constraints;
@@ -463,6 +477,12 @@ struct PolyDepthSolver::Impl {
     // Move toward q_new, landing on the first contact on the way.
     bool touched = false;
     Vector3 q_next = OutProjectRecording(pair, q_c, q_new, margin, &touched, &s.record);
+    // Stopped by the budget, the sweep's free point is not taken: the
+    // answer stays at q_c, whose localisation the result needs and has (at
+    // the sweep's point it would cost a descent of both hierarchies, the
+    // stopped sweep leaving no record: 2k tests past a 7k budget on
+    // cow_armadillo, for a gain of micrometres).
+    if (s.stopped_early && q_c == s.best_constraints_q_S) break;
     if (!touched) {
       // The target is free (the sweep to it from a free start met nothing)
       // and lies on the local model's boundary, usually on the contact space
@@ -728,9 +748,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   }
   s.best_norm = 1e300;
   s.best_origin = Initializer::kNone;
-  // The configuration last verified free by a full collision test (so the
-  // final check need not repeat it).
-  Vector3 verified_q_S = Vector3::Constant(1e300);
+  s.verified_q_S = Vector3::Constant(1e300);
+  s.surfaces_free_q_S = Vector3::Constant(1e300);
 
   // 0. Incremental update, step two: from the prediction, localise and test
   // the surfaces in one pass; while the configuration is free, in-project on
@@ -748,7 +767,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
           AnyComponentInside(pair, q))
         break;
       s.constraints_q_S = q;
-      verified_q_S = q;
+      s.verified_q_S = q;
       if (s.constraints.empty()) {
         // Free but off the contact space (the probe moved away from the
         // contact): land on it toward the query, then go on from there
@@ -776,8 +795,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     }
     // The last target collided: continue from the last free point the usual
     // way (its out-projection lands on the contact space before the target).
-    if (s.best_origin != Initializer::kNone && q != verified_q_S)
-      s.Iterate(pair, options_, size, verified_q_S, Initializer::kMotionCoherence);
+    if (s.best_origin != Initializer::kNone && q != s.verified_q_S)
+      s.Iterate(pair, options_, size, s.verified_q_S, Initializer::kMotionCoherence);
   }
 
   // 1. Motion coherence: step off the previous answer along its normal by
@@ -801,11 +820,15 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       if (InCollision(pair, q0)) return false;
       // Verified free: an answer already (an upper bound), so a bounded
       // query may stop the out-projection from it (pair.stop_ccd).
+      s.verified_q_S = q0;
       s.Offer(q0, Initializer::kMotionCoherence);
       bool touched = false;
       const Vector3 q_c =
           OutProjectRecording(pair, q0, Vector3::Zero(), margin, &touched, &s.record);
-      if (touched) s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
+      // Stopped by the budget, its free point is not taken (as in Iterate):
+      // q0 is tested in full, the point short of the contact is not.
+      if (touched && !s.stopped_early)
+        s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
       return true;
     };
     bool started = std::any_of(candidates.begin(), candidates.end(), try_from);
@@ -831,6 +854,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       for (int attempt = 0; attempt < 3; ++attempt, offset *= 4.0) {
         const Vector3 q0 = back + offset * (back / len);
         if (InCollision(pair, q0)) continue;
+        s.verified_q_S = q0;
         s.Offer(q0, Initializer::kMotionCoherence);  // verified free (see try_from above)
         bool touched = false;
         const Vector3 q_c =
@@ -1054,7 +1078,9 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // the budget is spent: then the answer is reported invalid instead).
   auto verified = [&] {
     return s.best_origin != Initializer::kNone &&
-           (s.best_q_S == verified_q_S || !InCollision(pair, s.best_q_S));
+           (s.best_q_S == s.verified_q_S ||
+            (s.best_q_S == s.surfaces_free_q_S ? !AnyComponentInside(pair, s.best_q_S)
+                                               : !InCollision(pair, s.best_q_S)));
   };
   bool valid = verified();
   // 3a. Out of thin pockets: an answer that collides again a pocket's
@@ -1090,7 +1116,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         if (touched && e != q && !InCollision(pair, e + thickness * e.normalized())) q = e;
         s.best_q_S = q;
         s.best_norm = q.norm();
-        verified_q_S = q;
+        s.verified_q_S = q;
         s.constraints_q_S = Vector3::Constant(1e300);
         break;
       }

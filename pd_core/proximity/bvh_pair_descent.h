@@ -318,6 +318,12 @@ bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&&
       d{bvh_P.nodes(), bvh_S.nodes(), test, alive, on_leaf_pair};
   d.tests = 1;
   d.cut = cut;
+  // The box tests so far are counted before each stop() (a work budget
+  // reads the counters).
+  auto counted_stop = [&] {
+    if (counters) counters->box_tests += std::exchange(d.tests, 0);
+    return stop();
+  };
   bool completed = true;
   // The root's parent key: the lowest there is.
   internal::DescentEntry root{root_P, root_S, -std::numeric_limits<double>::infinity()};
@@ -328,7 +334,8 @@ bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&&
       if constexpr (kOrder == DescentOrder::kBestFirst) {
         std::array<internal::DescentEntry, kBestFirstHeapCapacity> heap;
         double unused = 0.0;
-        completed = d.BestFirst(heap, stack, root, stop, stopped_at ? stopped_at : &unused);
+        completed =
+            d.BestFirst(heap, stack, root, counted_stop, stopped_at ? stopped_at : &unused);
       } else {
         completed = d.DepthFirst(stack, root);
       }

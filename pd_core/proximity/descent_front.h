@@ -13,6 +13,7 @@
 // the cut (about half a descent's box tests).
 #include <cstddef>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "pd_core/geometry/pose.h"
@@ -68,6 +69,9 @@ class DescentFront {
 // total work +19% (+5% capped at 1500); the solver empties it at each query.
 inline constexpr double kFrontReuseDistance = 3e-3;
 inline constexpr size_t kMaxFrontPairs = 4096;
+// A best-first descent from a cut asks the caller's stop once per this many
+// of the cut's pairs while it tests them (and before each pop after).
+inline constexpr size_t kCutPairsPerStopAsk = 64;
 
 // The pair's front for a descent at q_S (m, in S): null when the pair keeps
 // none; emptied first (the descent starts at the roots and leaves a new cut)
@@ -114,25 +118,39 @@ bool DescendBvhPairFromFront(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test
     return false;
   };
   bool completed = true;
+  // The box tests so far are counted before each stop() (a work budget
+  // reads the counters).
+  auto counted_stop = [&] {
+    if (counters) counters->box_tests += std::exchange(d.tests, 0);
+    return stop();
+  };
   auto run = [&](auto& stack) {
     internal::DescentEntry e;
     if constexpr (kOrder == DescentOrder::kBestFirst) {
       // The caller's stop first, as a descent from the roots asks it after
       // one test: with no pair tested, nothing is known beyond -inf, and
       // the cut stays as it is.
-      if (stop()) {
+      if (counted_stop()) {
         if (stopped_at) *stopped_at = -std::numeric_limits<double>::infinity();
         front->next_.assign(cut.begin(), cut.end());
         return;
       }
-      // Every pair of the cut tested first: the heap orders them all.
+      // Every pair of the cut tested first: the heap orders them all. The
+      // stop is asked along the way too (a cut holds up to max_cut pairs);
+      // stopped there, nothing is known beyond -inf and the cut stays.
       auto& kept = front->kept_;
       kept.clear();
-      for (size_t r = 0; r < cut.size(); ++r)
+      for (size_t r = 0; r < cut.size(); ++r) {
+        if (r % kCutPairsPerStopAsk == kCutPairsPerStopAsk - 1 && counted_stop()) {
+          if (stopped_at) *stopped_at = -std::numeric_limits<double>::infinity();
+          front->next_.assign(cut.begin(), cut.end());
+          return;
+        }
         if (test_pair(r, &e)) kept.push_back(e);
+      }
       std::array<internal::DescentEntry, kBestFirstHeapCapacity> heap;
       double unused = 0.0;
-      completed = d.BestFirst(heap, stack, kept.data(), kept.size(), stop,
+      completed = d.BestFirst(heap, stack, kept.data(), kept.size(), counted_stop,
                               stopped_at ? stopped_at : &unused);
     } else {
       // Each pair descended as soon as it is kept: a descent the leaf

@@ -25,7 +25,8 @@ namespace pd {
 // true; otherwise (the leaf-pair list answered) the record is incomplete.
 //
 // `pair.stop_ccd` (optional): asked as the search goes (between the parts of
-// a candidate-list walk, before each pop of the descent); when it says stop,
+// a candidate-list walk and every 16 entries within one, before each pop of
+// the descent); when it says stop,
 // the search returns at once a fraction up to which the sweep is known
 // contact-free (the parts of the list walked, the lowest pending key of the
 // best-first descent, or an earlier contact found), with *stopped (if given)

@@ -312,6 +312,99 @@ TEST_F(TranslationalCcd, AStoppedListWalkReturnsTheFreePartItWalked) {
   EXPECT_EQ(stopped_in_list, 3);
 }
 
+// A work budget (the stop reading the pair's counters, as PolyDepth's
+// max_work does) stops each path of the search within a few tests of it:
+// the descent from the roots, the descent from the last sweep's cut and a
+// candidate list's walk count their box tests before each time they ask
+// (they counted them only when done: a bounded query ran 1.6k tests past
+// its budget in one CCD). The point returned is free and no later than the
+// first contact.
+TEST_F(TranslationalCcd, AWorkBudgetStopsEachPathOfTheSearchWithinAFewTestsOfIt) {
+  const Model P = knot1_, S = cow_;
+  std::mt19937_64 rng(31);
+  std::normal_distribution<double> g;
+  // A pop expands one pair (2 box tests) or a leaf pair (up to 4 triangle
+  // tests); a descent from a cut tests the cut's pairs first, asking every
+  // 64; a list walk asks every 16 entries (a box test and up to 4 triangle
+  // tests each).
+  constexpr int64_t kDescentSlack = 4, kCutSlack = 64 + 4, kListSlack = 16 * 5;
+  enum Path { kRoots, kCut, kList };
+  int checked[3] = {0, 0, 0};
+  for (int k = 0; k < 12; ++k) {
+    const ModelPair plain(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
+    std::vector<SupportPlaneStart> starts;
+    ComputeSupportPlaneStarts(plain, &starts);
+    // From the contact (a start landed, a hair back) along it, as a
+    // search's sweeps go: the pairs touching at the start cost most.
+    const double landed = FirstContactAlongTranslation(plain, starts[0].q_S, -starts[0].q_S);
+    ASSERT_GT(landed, 0.0);
+    const Vector3 from =
+        (1.0 - landed) * starts[0].q_S + 1e-8 * plain.size() * starts[0].q_S.normalized();
+    const Vector3 in = -from.normalized();
+    auto along_contact = [&](double into) {
+      const Vector3 u = Vector3(g(rng), g(rng), g(rng)).normalized();
+      return Vector3(0.05 * plain.size() * ((u - u.dot(in) * in).normalized() + into * in));
+    };
+    const Vector3 sweep = along_contact(0.2);
+    // Cut: the last sweep (here `sweep`) ended near; the next goes on from
+    // where it landed, another way.
+    const double s_first = FirstContactAlongTranslation(plain, from, sweep);
+    const Vector3 landing =
+        from + (s_first < 0 ? 1.0 : std::max(0.0, s_first - 1e-8 * plain.size() / sweep.norm())) *
+                   sweep;
+    const Vector3 next = along_contact(0.0);
+    // List: a sweep from a little off the contact along it, through a list
+    // built a way back (the probe has moved across it since), so that its
+    // walk's prefix holds every entry within that motion (a dense list).
+    const Vector3 off = from - 2e-3 * plain.size() * in;
+    const Vector3 across = along_contact(0.0);
+    CandidatePairs list;
+    list.Build(plain, off - 0.3 * across, 0.12 * plain.size(), CandidatePairs::Grain::kLeafPairs);
+    for (Path path : {kRoots, kCut, kList}) {
+      const Vector3 start = path == kCut ? landing : path == kList ? off : from;
+      const Vector3 d = path == kRoots ? sweep : path == kCut ? next : across;
+      if (path == kList && !(list.CoveredFraction(plain, start, d, 0.0) > 0.0)) continue;
+      // The same search unstopped (its work sets the budget) and stopped.
+      auto search = [&](ProximityCounters* counters, const std::function<bool()>* stop,
+                        bool* stopped) {
+        ModelPair pair = plain;
+        DescentFront front;
+        if (path == kCut) {
+          pair.front = &front;
+          FirstContactAlongTranslation(pair, from, sweep);  // leaves its cut
+        }
+        if (path == kList) pair.candidates = &list;
+        pair.counters = counters;
+        pair.stop_ccd = stop;
+        return FirstContactAlongTranslation(pair, start, d, -1.0, nullptr, nullptr, stopped);
+      };
+      ProximityCounters full;
+      const double exact = search(&full, nullptr, nullptr);
+      const int64_t slack = path == kList ? kListSlack : path == kCut ? kCutSlack : kDescentSlack;
+      const int64_t limit = full.total() / 2;
+      if (limit < 2 * slack) continue;  // too short a search to stop within it
+      ProximityCounters counters;
+      const std::function<bool()> stop = [&] { return counters.total() >= limit; };
+      bool stopped = false;
+      const double s = search(&counters, &stop, &stopped);
+      EXPECT_TRUE(stopped) << "pose " << k << " path " << path;
+      EXPECT_LE(counters.total(), limit + slack)
+          << "pose " << k << " path " << path << " limit " << limit;
+      EXPECT_GE(s, 0.0);
+      if (exact >= 0.0) EXPECT_LE(s, exact + 1e-12) << "pose " << k << " path " << path;
+      EXPECT_FALSE(InCollision(plain, start + std::max(0.0, s - 1e-9) * d))
+          << "pose " << k << " path " << path;
+      ++checked[path];
+    }
+  }
+  // Each path was stopped in several searches long enough to stop in.
+  EXPECT_GE(checked[kRoots], 4);
+  EXPECT_GE(checked[kCut], 4);
+  EXPECT_GE(checked[kList], 4);
+  RecordProperty("checked", std::to_string(checked[0]) + " " + std::to_string(checked[1]) + " " +
+                                std::to_string(checked[2]));
+}
+
 TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterMotion) {
   const Model P = cow_, S = knot1_;
   std::mt19937_64 rng(5);
