@@ -110,7 +110,11 @@ struct PolyDepthOptions {
   // triangle tests; 0 = unbounded) or wall time (us; 0 = unbounded), Solve
   // stops searching and returns its best verified-free answer so far with
   // converged = false. It never returns a colliding answer: without any
-  // verified answer yet it continues to the first one.
+  // verified answer yet it continues to the first one. The search stops
+  // within a few tests of the budget (each descent and list walk asks as it
+  // goes); the answer's finish comes after it: its collision test (usually
+  // done by the search already), a pocket escape if it needs one, and its
+  // localisation if the search had none there (the query's first answer).
   int64_t max_work = 0;
   double max_time_us = 0.0;
   // Answer first, rebuild the list after: a warm query whose list no longer
