@@ -114,6 +114,10 @@ struct RunSettings {
   // The haptic paths solved again with PolyDepthOptions::max_time_us at this
   // (us; 0: not run): the geometry thread's bounded-time mode.
   double haptic_budget_us = 0.0;
+  // More paths of each haptic pair (other seeds), solved unbounded and
+  // bounded with their answers checked free; no FCL or reference: the max
+  // of one path depends on that path.
+  int haptic_more_paths = 0;
   uint64_t seed = 0;        // bench_pd's default: kDefaultBenchSeed
   std::string mesh_dir, out_dir;
   // Scenarios to run (random, path, shallow); empty = all.
@@ -160,11 +164,24 @@ struct HapticStep {
   pd::Vector3 budget_translation_W = pd::Vector3::Zero();
 };
 
+// One more path of a haptic pair (RunSettings::haptic_more_paths): the
+// colliding poses' times and work, unbounded and bounded, as the first path
+// is solved; answers checked free (+kHapticFreeMargin).
+struct HapticPathRun {
+  uint64_t path_seed = 0;
+  std::vector<double> us, work, depth;  // colliding poses, unbounded
+  int cold_restarts = 0, not_free = 0;
+  std::vector<double> budget_us;         // colliding poses, bounded
+  int budget_stopped = 0, budget_not_free = 0;
+};
+
 struct HapticPairResult {
   HapticPairSpec spec;
   BenchPair pair;
   std::string description;
+  uint64_t path_seed = 0;
   std::vector<HapticStep> steps;
+  std::vector<HapticPathRun> more_paths;
 };
 
 struct BenchRun {

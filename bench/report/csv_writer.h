@@ -14,4 +14,9 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
 // returns its name.
 std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std::string& dir);
 
+// Writes pd_haptic_paths.csv (one row per haptic path of every pair, the
+// first and the more seeded ones: colliding poses' times and work) into
+// dir; returns its name.
+std::string WriteHapticPathsCsv(const std::vector<HapticPairResult>& runs, const std::string& dir);
+
 }  // namespace pd_bench

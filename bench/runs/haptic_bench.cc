@@ -14,6 +14,38 @@
 
 namespace pd_bench {
 
+namespace {
+
+// Solves `path` with one warm-started solver as the server's geometry thread
+// does: each answer first, then the list rebuild it deferred (PrepareNext)
+// until the next pose is due, a millisecond after the answer's query began.
+// on_answer(case, result, preparation) after each pose.
+template <typename OnAnswer>
+void SolveAlongPath(const BenchPair& pair, const HapticPath& path, const pd::Isometry3& X_WS,
+                    const pd::PolyDepthOptions& options, OnAnswer&& on_answer) {
+  pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, options);
+  for (const Case& c : path.cases) {
+    const pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS, /*coherent=*/true);
+    const auto t0 = std::chrono::steady_clock::now();
+    const double left_us = kHapticPosePeriodUs - r.time_us;
+    const pd::PolyDepthSolver::Preparation p = solver.PrepareNext([&] {
+      return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0)
+                 .count() >= left_us;
+    });
+    on_answer(c, r, p);
+  }
+}
+
+// The answer q_S (the probe's translation, in S) is free, and so is the
+// probe kHapticFreeMargin of the pair's size further out along it.
+bool AnswerFreeBeyond(const pd::ModelPair& mp, const pd::Vector3& q_S) {
+  const double n = q_S.norm();
+  return !pd::InCollision(mp, q_S) &&
+         (n == 0 || !pd::InCollision(mp, q_S * (1.0 + kHapticFreeMargin * mp.size() / n)));
+}
+
+}  // namespace
+
 HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec,
                                const RunSettings& st) {
   HapticPairResult out;
@@ -23,37 +55,21 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
   HapticPath path;
   {
     Progress bar(tag + "making the haptic path", 1);
-    path = MakeHapticPath(pair, spec, st.haptic_steps, HapticPathSeed(st.seed));
+    out.path_seed = HapticPathSeed(st.seed);
+    path = MakeHapticPath(pair, spec, st.haptic_steps, out.path_seed);
   }
   out.description = path.description;
   const pd::Isometry3 X_WS = ScenePose(pair);
 
   // PolyDepth alone first, one warm-started solver for the whole path, as
-  // the server's geometry thread runs it: each answer first, then the list
-  // rebuild it deferred (PrepareNext) until the next pose is due, a
-  // millisecond after the answer's query began.
+  // the server's geometry thread runs it (SolveAlongPath).
   pd::PolyDepthOptions deferring;
   deferring.defer_list_builds = true;
-  auto prepare_until_next_pose = [](pd::PolyDepthSolver& solver, double query_us,
-                                    HapticStep* s) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const double left_us = kHapticPosePeriodUs - query_us;
-    const pd::PolyDepthSolver::Preparation p = solver.PrepareNext([&] {
-      return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0)
-                 .count() >= left_us;
-    });
-    if (s == nullptr) return;
-    s->prepare_us = p.time_us;
-    s->prepare_box_tests = static_cast<double>(p.box_tests);
-    s->lists_completed = p.lists_completed;
-    s->prepare_paused = !p.done;
-  };
   {
     Progress bar(tag + "PolyDepth (haptic)", static_cast<int>(path.cases.size()));
-    pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, deferring);
     bool previous_seen = false;
-    for (const Case& c : path.cases) {
-      const pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS, /*coherent=*/true);
+    SolveAlongPath(pair, path, X_WS, deferring, [&](const Case& c, const pd::PenetrationResult& r,
+                                                     const pd::PolyDepthSolver::Preparation& p) {
       HapticStep s;
       s.c = c;
       s.pd.in_collision = r.in_collision;
@@ -70,11 +86,14 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       s.pd.work = r.work;
       s.cold_restart = previous_seen && r.in_collision && r.warm_start_failed;
       s.cross_checked = r.cross_checked;
-      prepare_until_next_pose(solver, r.time_us, &s);
+      s.prepare_us = p.time_us;
+      s.prepare_box_tests = static_cast<double>(p.box_tests);
+      s.lists_completed = p.lists_completed;
+      s.prepare_paused = !p.done;
       previous_seen = true;
       out.steps.push_back(s);
       bar.Tick();
-    }
+    });
   }
   // The comparison: the same path with the rebuilds inside the queries.
   {
@@ -93,14 +112,14 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
   // The same path again in bounded time (the geometry thread's mode): each
   // query stops at the budget with its best verified-free answer so far and
   // the next goes on from it (and rebuilds deferred as above).
+  pd::PolyDepthOptions bounded = deferring;
+  bounded.max_time_us = st.haptic_budget_us;
   if (st.haptic_budget_us > 0.0) {
     Progress bar(tag + "PolyDepth (haptic, bounded time)", static_cast<int>(out.steps.size()));
-    pd::PolyDepthOptions options = deferring;
-    options.max_time_us = st.haptic_budget_us;
-    pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, options);
-    for (HapticStep& s : out.steps) {
-      const pd::PenetrationResult r = solver.Solve(s.c.X_WP, X_WS, /*coherent=*/true);
-      prepare_until_next_pose(solver, r.time_us, nullptr);
+    size_t i = 0;
+    SolveAlongPath(pair, path, X_WS, bounded, [&](const Case&, const pd::PenetrationResult& r,
+                                                   const pd::PolyDepthSolver::Preparation&) {
+      HapticStep& s = out.steps[i++];
       s.has_budget = true;
       s.budget_in_collision = r.in_collision;
       s.budget_converged = r.converged;
@@ -108,6 +127,41 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       s.budget_depth = r.depth;
       s.budget_time_us = r.time_us;
       s.budget_translation_W = r.translation_W;
+      bar.Tick();
+    });
+  }
+  // More paths (other seeds): times and work, unbounded and bounded, every
+  // answer checked free; no FCL, no reference.
+  {
+    Progress bar(tag + "PolyDepth (haptic, more paths)", st.haptic_more_paths);
+    for (int k = 1; k <= st.haptic_more_paths; ++k) {
+      HapticPathRun run;
+      run.path_seed = HapticPathSeed(st.seed + k);
+      const HapticPath more = MakeHapticPath(pair, spec, st.haptic_steps, run.path_seed);
+      bool previous_seen = false;
+      SolveAlongPath(pair, more, X_WS, deferring, [&](const Case& c, const pd::PenetrationResult& r,
+                                                       const pd::PolyDepthSolver::Preparation&) {
+        const bool seen = previous_seen;
+        previous_seen = true;
+        if (!r.in_collision) return;
+        run.us.push_back(r.time_us);
+        run.work.push_back(static_cast<double>(r.box_tests + r.triangle_tests));
+        run.depth.push_back(r.depth);
+        run.cold_restarts += seen && r.warm_start_failed;
+        const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, c.X_WP, X_WS);
+        run.not_free += !(r.valid && AnswerFreeBeyond(mp, X_WS.linear().transpose() * r.translation_W));
+      });
+      if (st.haptic_budget_us > 0.0)
+        SolveAlongPath(pair, more, X_WS, bounded, [&](const Case& c, const pd::PenetrationResult& r,
+                                                       const pd::PolyDepthSolver::Preparation&) {
+          if (!r.in_collision) return;
+          run.budget_us.push_back(r.time_us);
+          run.budget_stopped += !r.converged;
+          const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, c.X_WP, X_WS);
+          run.budget_not_free +=
+              !(r.valid && AnswerFreeBeyond(mp, X_WS.linear().transpose() * r.translation_W));
+        });
+      out.more_paths.push_back(std::move(run));
       bar.Tick();
     }
   }
@@ -117,18 +171,12 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
     const FclBaselines fcl(pair.probe->model->mesh(), pair.scene->model->mesh(), 1);
     for (HapticStep& s : out.steps) {
       const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, s.c.X_WP, X_WS);
-      // Free kHapticFreeMargin of the pair's size further out along an
-      // answer (translation_W); the answer itself is checked by the caller.
-      auto free_beyond = [&](const pd::Vector3& q_S) {
-        const double n = q_S.norm();
-        return n == 0 || !pd::InCollision(mp, q_S * (1.0 + kHapticFreeMargin * mp.size() / n));
-      };
       const pd::Vector3 q_S = X_WS.linear().transpose() * s.pd.translation_W;
       s.pd.verified_free = !pd::InCollision(mp, q_S);
-      s.free_beyond = s.pd.verified_free && free_beyond(q_S);
+      s.free_beyond = AnswerFreeBeyond(mp, q_S);
       if (s.has_budget && s.budget_in_collision && s.budget_free) {
         const pd::Vector3 b_S = X_WS.linear().transpose() * s.budget_translation_W;
-        s.budget_free = !pd::InCollision(mp, b_S) && free_beyond(b_S);
+        s.budget_free = AnswerFreeBeyond(mp, b_S);
       }
       const FclAnswer a = fcl.Collide(s.c.X_WP, X_WS);
       s.fcl_time_us = a.time_us;
@@ -255,6 +303,63 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   m.budget_us = Summarize(budget_us);
   m.budget_abs_error = Summarize(budget_err);
   m.signed_mean_error = Mean(signed_err);
+  return m;
+}
+
+HapticPathsSummary SummarizeHapticPaths(const HapticPairResult& r, double target_max_us) {
+  HapticPathsSummary m;
+  double max_all = 0.0, in_range = 0.0, p99 = 0.0, work = 0.0, budget_all = 0.0;
+  bool any_budget = false;
+  auto add_path = [&](const std::vector<double>& us, const std::vector<double>& depth,
+                      const std::vector<double>& works, const std::vector<double>& budget_us) {
+    ++m.paths;
+    m.colliding += static_cast<int>(us.size());
+    const Summary t = Summarize(us);
+    m.max_us.push_back(t.max);
+    m.paths_over_target += t.max > target_max_us;
+    max_all = std::max(max_all, t.max);
+    p99 = std::max(p99, t.p99);
+    for (size_t i = 0; i < us.size(); ++i)
+      if (depth[i] <= kHapticTargetMaxDepth) in_range = std::max(in_range, us[i]);
+    for (double w : works) work = std::max(work, w);
+    if (!budget_us.empty()) {
+      any_budget = true;
+      const double b = Summarize(budget_us).max;
+      m.budget_max_us.push_back(b);
+      m.budget_paths_over_target += b > target_max_us;
+      budget_all = std::max(budget_all, b);
+    }
+  };
+  {
+    std::vector<double> us, depth, works, budget_us;
+    for (const HapticStep& s : r.steps) {
+      if (s.pd.in_collision) {
+        us.push_back(s.pd.time_us);
+        depth.push_back(s.pd.depth);
+        works.push_back(s.box_tests + s.triangle_tests);
+        m.cold_restarts += s.cold_restart;
+        m.not_free += !s.free_beyond;
+      }
+      if (s.has_budget && s.budget_in_collision) {
+        budget_us.push_back(s.budget_time_us);
+        m.budget_stopped += !s.budget_converged;
+        m.budget_not_free += !s.budget_free;
+      }
+    }
+    add_path(us, depth, works, budget_us);
+  }
+  for (const HapticPathRun& p : r.more_paths) {
+    add_path(p.us, p.depth, p.work, p.budget_us);
+    m.cold_restarts += p.cold_restarts;
+    m.not_free += p.not_free;
+    m.budget_stopped += p.budget_stopped;
+    m.budget_not_free += p.budget_not_free;
+  }
+  m.max_us_all = max_all;
+  m.in_range_max_us = in_range;
+  m.worst_p99_us = p99;
+  m.max_work = work;
+  if (any_budget) m.budget_max_us_all = budget_all;
   return m;
 }
 

@@ -62,8 +62,22 @@ struct HapticSummary {
   double signed_mean_error = kNaN;
 };
 
+// Every path of a pair (the first and RunSettings::haptic_more_paths more),
+// colliding poses: the max per path and over all, unbounded and bounded.
+struct HapticPathsSummary {
+  int paths = 0, colliding = 0;
+  std::vector<double> max_us;     // per path, the first first
+  double max_us_all = kNaN, in_range_max_us = kNaN, worst_p99_us = kNaN, max_work = kNaN;
+  int paths_over_target = 0;      // paths whose max exceeds the warm target
+  int cold_restarts = 0, not_free = 0;
+  std::vector<double> budget_max_us;  // per path
+  double budget_max_us_all = kNaN;
+  int budget_stopped = 0, budget_not_free = 0, budget_paths_over_target = 0;
+};
+
 HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec,
                                const RunSettings& st);
+HapticPathsSummary SummarizeHapticPaths(const HapticPairResult& r, double target_max_us);
 HapticSummary SummarizeHaptic(const HapticPairResult& r);
 
 }  // namespace pd_bench

@@ -140,7 +140,7 @@ ContactConfig ReadContact(const YamlMap& m) {
   c.sync_budget = m.NumberOr("sync_budget", 0.25, Range::Positive(1.0, "of the servo period"));
   c.geometry_cpu = m.IntegerOr("geometry_cpu", -1, -1, 1023);
   c.geometry_budget_s =
-      1e-3 * m.NumberOr("geometry_budget_ms", 2.0, Range::Closed(0.05, 1000.0, "ms"));
+      1e-3 * m.NumberOr("geometry_budget_ms", 0.9, Range::Closed(0.05, 1000.0, "ms"));
   c.invalid_hold_s = 1e-3 * m.NumberOr("invalid_hold_ms", 200.0, Range::Closed(1.0, 5000.0, "ms"));
   c.model_max_age_s = 1e-3 * m.NumberOr("model_max_age_ms", 250.0, Range::Closed(1.0, 5000.0, "ms"));
   c.model_age_ramp_s = 1e-3 * m.NumberOr("model_age_ramp_ms", 250.0, Range::Closed(1.0, 5000.0, "ms"));

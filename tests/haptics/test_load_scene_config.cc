@@ -151,7 +151,7 @@ TEST_F(ConfigTest, GeometryThreadHoldAgeingAndTickTrigger) {
   EXPECT_EQ(c.contact.geometry_thread, GeometryThreadMode::kAuto);
   EXPECT_DOUBLE_EQ(c.contact.invalid_hold_s, 0.2);
   EXPECT_DOUBLE_EQ(c.contact.model_max_age_s, 0.25);
-  EXPECT_DOUBLE_EQ(c.contact.geometry_budget_s, 0.002);
+  EXPECT_DOUBLE_EQ(c.contact.geometry_budget_s, 0.0009);
   EXPECT_TRUE(c.servo.pose_triggered);
   c = LoadSceneConfig(Write(kScene, "  damping: 5.0\ncoupling",
                             "  damping: 5.0\n  geometry_thread: on\n  invalid_hold_ms: 50\n"
