@@ -20,6 +20,8 @@
 #include "bench/report/bench_results.h"
 #include "bench/report/summaries.h"
 #include "pd_core/polydepth/polydepth.h"
+#include "pd_core/proximity/mesh_collision.h"
+#include "pd_core/proximity/model_pair.h"
 
 int main(int argc, char** argv) {
   using namespace pd_bench;
@@ -46,6 +48,12 @@ int main(int argc, char** argv) {
                  "PolyDepthOptions::max_time_us (us; 0 = unbounded; makes the work load-dependent)");
   app.add_option("--creep-join-iterations", options.creep_join_iterations,
                  "PolyDepthOptions::creep_join_iterations for an A/B (0 = off)");
+  bool dump_poses = false;
+  app.add_flag("--dump-poses", dump_poses,
+               "with --dump: also each pose's X_WP (x y z in m, then qw qx qy qz) for test fixtures");
+  bool check_free = false;
+  app.add_flag("--check-free", check_free,
+               "check every colliding answer free, and free kHapticFreeMargin x size beyond along itself (bench_pd's test); list those that are not");
   app.add_flag("--defer", options.defer_list_builds,
                "PolyDepthOptions::defer_list_builds: list builds run in PrepareNext after each answer (to the end); their work is reported apart");
   CLI11_PARSE(app, argc, argv);
@@ -88,7 +96,7 @@ int main(int argc, char** argv) {
                    repeat_us * 1e-6);
     pd::PolyDepthSolver solver(tool->model, object->model, options);
     std::vector<double> work, us, deferred;
-    int builds = 0, cold = 0, index = 0;
+    int builds = 0, cold = 0, index = 0, not_free = 0;
     std::vector<pd::PenetrationResult::Work> works;
     bool seen = false;
     for (const Case& c : path.cases) {
@@ -102,16 +110,38 @@ int main(int argc, char** argv) {
         builds += r.list_builds;
         works.push_back(r.work);
         cold += seen && r.warm_start_failed;
+        if (check_free) {
+          const pd::ModelPair mp(*tool->model, *object->model, c.X_WP, X_WS);
+          const pd::Vector3 q_S = X_WS.linear().transpose() * r.translation_W;
+          const double n = q_S.norm();
+          const bool at = !pd::InCollision(mp, q_S);
+          const bool beyond =
+              n == 0 || !pd::InCollision(mp, q_S * (1.0 + kHapticFreeMargin * mp.size() / n));
+          if (!(r.valid && at && beyond)) {
+            ++not_free;
+            std::fprintf(stderr, "%s %d: answer not free (valid %d, free at it %d, beyond %d, depth %.9g, converged %d)\n",
+                         spec.name.c_str(), index, r.valid, at, beyond, r.depth, r.converged);
+          }
+        }
       }
       seen = true;
       if (out)
         out << spec.name << ' ' << index << ' ' << r.depth << ' '
             << r.box_tests + r.triangle_tests << ' ' << r.iterations << ' ' << r.list_builds
             << ' ' << r.cross_checked << ' ' << r.work.collision << ' ' << r.work.localisation
-            << ' ' << r.work.out_projection << ' ' << r.work.list_builds << ' ' << r.work.other
-            << '\n';
+            << ' ' << r.work.out_projection << ' ' << r.work.list_builds << ' ' << r.work.other;
+      if (out && dump_poses) {
+        const pd::Quaternion q(c.X_WP.linear());
+        const pd::Vector3 p = c.X_WP.translation();
+        out << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << ' ' << q.w() << ' ' << q.x() << ' '
+            << q.y() << ' ' << q.z();
+      }
+      if (out) out << '\n';
       ++index;
     }
+    if (check_free)
+      std::fprintf(stderr, "%s: %d answers not free (+%g x size)\n", spec.name.c_str(), not_free,
+                   kHapticFreeMargin);
     const WorkShares shares = SharesOf(works);
     if (!deferred.empty())
       std::fprintf(stderr, "%s: %zu deferred list builds (PrepareNext), work p50 %.0f p99 %.0f max %.0f\n",

@@ -127,6 +127,13 @@ constexpr double kProvedSlack = 1.0 / kCheckRadius - 1.0;
 // Directions of PolyDepthOptions::cold_deep_probes (96 against 48 or 192:
 // the same torus-knot error as 192 at three quarters of its work).
 constexpr int kDeepProbeDirections = 96;
+// A pocket check moves the answer off the feature pairs within this many
+// pocket thicknesses of touching: those that bound the pocket. With all the
+// answer's feature pairs (up to contact_tol away) the probe was often
+// wedged: no one direction clears pairs that face each other across a
+// contact, though the pocket itself opens (cow_armadillo: 3 answers on 30
+// paths left in pockets).
+constexpr double kPocketBoundSlack = 4.0;
 // Directions this close to the coherent answer's are its own basin.
 constexpr double kCheckOwnBasinCos = 0.9;
 // An answer more than 120 degrees from the coherent one points back through
@@ -511,6 +518,7 @@ struct PolyDepthSolver::Impl {
   // (the shortest x with n_i·x >= 1 for all, normalised), and in *clearance
   // the least rate min_i n_i·d at which it does; zero vector and clearance
   // <= 0 when no direction clears them all (the probe is wedged).
+  std::vector<ContactConstraint> pocket_constraints;  // the pocket check's (Solve)
   Vector3 ClearingDirection(const std::vector<ContactConstraint>& cs, double tol,
                             double* clearance) {
     unit_constraints.assign(cs.begin(), cs.end());
@@ -545,6 +553,7 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
   impl_->best_constraints.reserve(1024);
   impl_->previous_constraints.reserve(1024);
   impl_->unit_constraints.reserve(1024);
+  impl_->pocket_constraints.reserve(1024);
   impl_->joined.reserve(1024);
   impl_->earlier.reserve(1024);
   impl_->starts.reserve(64);
@@ -1102,14 +1111,11 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         });
     if (suspect && InCollision(pair, s.best_q_S + thickness * n)) {
       ++result.pocket_escapes;
-      double clearance = 0.0;
-      const Vector3 d = s.ClearingDirection(s.constraints, options_.convergence_tol, &clearance);
-      for (double t = 2.0 * thickness / std::max(clearance, 1e-3); clearance > 0.0 && t < 16.0 * contact_distance;
-           t *= 4.0) {
-        Vector3 q = s.best_q_S + t * d;
-        if (InCollision(pair, q) || InCollision(pair, q + thickness * q.normalized())) continue;
-        // Back in along the new direction to where the probe touches, so
-        // the answer is again exactly where it leaves along itself.
+      // A free q that is free a thickness further along itself too, after
+      // moving it back in along itself to where the probe touches (so the
+      // answer is again exactly where it leaves along itself).
+      auto escape_to = [&](Vector3 q) {
+        if (InCollision(pair, q) || InCollision(pair, q + thickness * q.normalized())) return false;
         bool touched = false;
         const Vector3 e = OutProject(pair, q, Vector3::Zero(), margin, &touched);
         // (A budget-stopped out-projection may not move: e == q, tested above.)
@@ -1118,8 +1124,26 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         s.best_norm = q.norm();
         s.verified_q_S = q;
         s.constraints_q_S = Vector3::Constant(1e300);
-        break;
-      }
+        return true;
+      };
+      // Off the feature pairs that bound the pocket (those within a few
+      // thicknesses of touching; the others are far at this scale) at once.
+      s.pocket_constraints.clear();
+      for (const ContactConstraint& c : s.constraints)
+        if (c.n_S.dot(s.best_q_S) - c.c <= kPocketBoundSlack * thickness)
+          s.pocket_constraints.push_back(c);
+      double clearance = 0.0;
+      const Vector3 d =
+          s.ClearingDirection(s.pocket_constraints, options_.convergence_tol, &clearance);
+      bool escaped = false;
+      for (double t = 2.0 * thickness / std::max(clearance, 1e-3);
+           !escaped && clearance > 0.0 && t < 16.0 * contact_distance; t *= 4.0)
+        escaped = escape_to(s.best_q_S + t * d);
+      // Wedged (no direction clears them all) or still inside: through the
+      // pocket's far wall along the answer's own direction, and back in to
+      // where the probe touches it from outside.
+      for (double t = 2.0 * thickness; !escaped && t < 16.0 * contact_distance; t *= 4.0)
+        escaped = escape_to(s.best_q_S + t * n);
     }
   }
   if (!valid && options_.num_sampling_directions > 0 && !s.stopped_early) {
