@@ -128,6 +128,23 @@ const std::vector<std::array<double, 7>> kCowOverArmadilloWedged = {
     {-0.05570547017660525, 0.06395819835114312, -0.03906079096740077, 0.33511544102733043, -0.5828704119035728, 0.65924320799724057, 0.3366869715654649},
     {-0.055569716893840715, 0.06394938806971799, -0.0392096308747361, 0.33533725567634864, -0.5827330025451114, 0.65924104286261953, 0.33670821211491164}};
 
+// The same, cow_armadillo poses 2475-2485 of another path (bench_pd's run
+// seed + 5: path seed 20240616), in the object's frame: at the 7th the
+// incremental update lands on a contact whose feature pairs give no
+// half-space (a degenerate contact), and landed there again and again.
+const std::vector<std::array<double, 7>> kCowOverArmadilloDegenerate = {
+    {0.023080816714780024, 0.07818074657233069, 0.012805632354867093, 0.85798147206567243, 0.00063777465381168385, -0.30701619565889798, 0.41183545553855605},
+    {0.022924920834951505, 0.07832999292174261, 0.012796661292487145, 0.85788734885168627, 0.00082297047521535049, -0.3070878737971926, 0.41197773867836757},
+    {0.022764605190434432, 0.07846806097556536, 0.012785305307568062, 0.85779316683902851, 0.0010081662402135697, -0.30715953088801651, 0.41211999358167034},
+    {0.02260087627764228, 0.07859747452285297, 0.012772104495098769, 0.85769892603415454, 0.0011933619361133069, -0.30723116692645819, 0.41226222023871428},
+    {0.022437005984604626, 0.07872703407410465, 0.012758897019952458, 0.85760462644352309, 0.0013785575502210513, -0.30730278190760768, 0.41240441863975108},
+    {0.02227298468480836, 0.07885671927718223, 0.012745678239970392, 0.85751026807359765, 0.0015637530698440337, -0.30737437582655674, 0.41254658877503497},
+    {0.022108825678679393, 0.07898657315375385, 0.012732456629412837, 0.85741585093084538, 0.0017489484822891283, -0.30744594867839831, 0.41268873063482148},
+    {0.021944511828000293, 0.0791165541606954, 0.01271922318960703, 0.85732137502173733, 0.0019341437748632776, -0.30751750045822696, 0.41283084420936866},
+    {0.021780048731202206, 0.07924668420272186, 0.012705982012396866, 0.8572268403527491, 0.0021193389348731543, -0.3075890311611385, 0.41297292948893599},
+    {0.021615441797933822, 0.07937698524974786, 0.01269273716278899, 0.85713224693035983, 0.0023045339496258446, -0.30766054078223026, 0.41311498646378503},
+    {0.021450769492756077, 0.07950769181730429, 0.01267953596720958, 0.85703759476105279, 0.0024897288064283031, -0.30773202931660121, 0.41325701512417951}};
+
 // The same, fandisk_elephant poses 150-215, for the work per query where the
 // contact is broad (WarmPathWork.FandiskBroadContact... below): a flat face of
 // the tool sliding 0.5-1.8 mm deep over the object at about 0.15 mm per
@@ -255,6 +272,39 @@ TEST(WarmPathPockets, CowOverArmadillo) {
 TEST(WarmPathPockets, CowOverArmadilloWedged) {
   ExpectNoPocketsNoColdRestarts("cow.off", 0.047510300737962564, "armadillo.off", 0.00080634978724717667,
                                 kCowOverArmadilloWedged);
+}
+
+// The incremental update off the contact space lands on it toward the
+// query and goes on from there; where the landing touches but its feature
+// pairs give no half-space, it landed on itself again, 40 times (35.7k box
+// + triangle tests in one warm query; 1.7k now, and a shallower answer).
+// The stretch's warm queries stay under 10k tests each, as the geometry
+// thread runs them (rebuilds deferred), every answer free 2e-6 x size
+// beyond by the reference.
+TEST(WarmPathWork, CowOverArmadilloDegenerateContactLandsOnce) {
+  for (const std::string f : {"cow.off", "armadillo.off"})
+    PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
+  const auto tool = LoadScaled("cow.off", 0.047510300737962564);
+  const auto object = LoadScaled("armadillo.off", 0.00080634978724717667);
+  PolyDepthOptions options;
+  options.defer_list_builds = true;
+  PolyDepthSolver solver(tool, object, options);
+  const Isometry3 X_WS = Isometry3::Identity();
+  for (size_t i = 0; i < kCowOverArmadilloDegenerate.size(); ++i) {
+    const Isometry3 X_WP = PoseOf(kCowOverArmadilloDegenerate[i]);
+    const PenetrationResult r = solver.Solve(X_WP, X_WS, /*coherent=*/true);
+    solver.PrepareNext();
+    ASSERT_TRUE(r.in_collision) << "pose " << i;
+    ASSERT_TRUE(r.valid) << "pose " << i;
+    if (i > 0) {
+      EXPECT_FALSE(r.warm_start_failed) << "pose " << i;
+      EXPECT_LT(r.box_tests + r.triangle_tests, 10000) << "pose " << i;
+    }
+    const double beyond = 2e-6 * ModelPair(*tool, *object, X_WP, X_WS).size();
+    EXPECT_FALSE(ReferenceInCollision(tool->mesh(), X_WP, true, object->mesh(), X_WS, true,
+                                      r.translation_W + beyond * r.normal_W))
+        << "pose " << i;
+  }
 }
 
 // Work per query of a fast slide (bench_pd's 0.2 m/s): the cow tool goes on
