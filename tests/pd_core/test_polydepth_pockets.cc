@@ -66,7 +66,7 @@ const std::vector<std::array<double, 7>> kCowOverArmadillo = {
     {0.028066411249807289, 0.024634187586732796, -0.010230472531818094, 0.78342990511083932, 0.23384311034795299, 0.55429485820545932, -0.15592367904781534}};
 
 // The same, cow_armadillo poses 2940-2994 of another path (bench_pd's run
-// seed + 1: path seed 20240612), in the object's frame: at the 50th the
+// seed + 1, `haptic_work --seed 20240612`), in the object's frame: at the 50th the
 // answer lies in a pocket whose feature pairs face each other (no one
 // direction moves the tool off all the answer's feature pairs within
 // contact_tol: the pocket check left it there, free but colliding 2e-6 x
@@ -129,7 +129,7 @@ const std::vector<std::array<double, 7>> kCowOverArmadilloWedged = {
     {-0.055569716893840715, 0.06394938806971799, -0.0392096308747361, 0.33533725567634864, -0.5827330025451114, 0.65924104286261953, 0.33670821211491164}};
 
 // The same, cow_armadillo poses 2475-2485 of another path (bench_pd's run
-// seed + 5: path seed 20240616), in the object's frame: at the 7th the
+// seed + 5, `haptic_work --seed 20240616`), in the object's frame: at the 7th the
 // incremental update lands on a contact whose feature pairs give no
 // half-space (a degenerate contact), and landed there again and again.
 const std::vector<std::array<double, 7>> kCowOverArmadilloDegenerate = {
