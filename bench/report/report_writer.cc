@@ -48,8 +48,9 @@ void MachineSection(const BenchRun& run, std::ostream& md) {
                                std::atof(run.load_average_end.c_str()));
   if (load > 0.75 * m.num_cpus)
     md << "**Note:** the 1-minute load average reached " << F(load, 2) << " on " << m.num_cpus
-       << " CPUs during this run (other processes were busy), so the times below are inflated "
-          "by contention; compare runs only at similar load.\n\n";
+       << " CPUs during this run. It counts this run's own reference PD threads (all cores, "
+          "run after each pair's timed passes) as well as other processes; times measured "
+          "beside other work are inflated by contention: compare runs only at similar load.\n\n";
 }
 
 void SettingsSection(const BenchRun& run, std::ostream& md) {
