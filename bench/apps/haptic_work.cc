@@ -19,6 +19,7 @@
 #include "bench/common/stats.h"
 #include "bench/report/bench_results.h"
 #include "bench/report/summaries.h"
+#include "bench/runs/answer_free.h"
 #include "pd_core/polydepth/polydepth.h"
 #include "pd_core/proximity/mesh_collision.h"
 #include "pd_core/proximity/model_pair.h"
@@ -113,10 +114,8 @@ int main(int argc, char** argv) {
         if (check_free) {
           const pd::ModelPair mp(*tool->model, *object->model, c.X_WP, X_WS);
           const pd::Vector3 q_S = X_WS.linear().transpose() * r.translation_W;
-          const double n = q_S.norm();
           const bool at = !pd::InCollision(mp, q_S);
-          const bool beyond =
-              n == 0 || !pd::InCollision(mp, q_S * (1.0 + kHapticFreeMargin * mp.size() / n));
+          const bool beyond = FreeFurtherAlong(mp, q_S);
           if (!(r.valid && at && beyond)) {
             ++not_free;
             std::fprintf(stderr, "%s %d: answer not free (valid %d, free at it %d, beyond %d, depth %.9g, converged %d)\n",

@@ -138,45 +138,24 @@ std::string WriteHapticPathsCsv(const std::vector<HapticPairResult>& runs,
   std::ofstream f = Open(dir + "/" + name);
   f << "pair,path,path_seed,colliding,median_us,p99_us,max_us,max_work,cold_restarts,not_free,"
        "budget_median_us,budget_p99_us,budget_max_us,budget_stopped,budget_not_free\n";
-  auto row = [&](const std::string& pair, int path, const std::string& seed,
-                 const std::vector<double>& us, const std::vector<double>& work, int cold,
-                 int not_free, const std::vector<double>& budget_us, int stopped,
-                 int budget_not_free) {
-    const Summary t = Summarize(us), b = Summarize(budget_us);
+  auto row = [&](const std::string& pair, int path, const HapticPathRun& p) {
+    const Summary t = Summarize(p.us), b = Summarize(p.budget_us);
     double max_work = 0.0;
-    for (double w : work) max_work = std::max(max_work, w);
-    f << pair << ',' << path << ',' << seed << ',' << t.n << ',' << Num(t.median) << ','
-      << Num(t.p99) << ',' << Num(t.max) << ',' << Num(max_work) << ',' << cold << ','
-      << not_free << ',';
+    for (double w : p.work) max_work = std::max(max_work, w);
+    f << pair << ',' << path << ',' << p.path_seed << ',' << t.n << ',' << Num(t.median) << ','
+      << Num(t.p99) << ',' << Num(t.max) << ',' << Num(max_work) << ',' << p.cold_restarts
+      << ',' << p.not_free << ',';
     if (b.n > 0)
-      f << Num(b.median) << ',' << Num(b.p99) << ',' << Num(b.max) << ',' << stopped << ','
-        << budget_not_free;
+      f << Num(b.median) << ',' << Num(b.p99) << ',' << Num(b.max) << ',' << p.budget_stopped
+        << ',' << p.budget_not_free;
     else
       f << ",,,,";
     f << '\n';
   };
   for (const HapticPairResult& r : runs) {
-    std::vector<double> us, work, budget_us;
-    int cold = 0, not_free = 0, stopped = 0, budget_not_free = 0;
-    for (const HapticStep& s : r.steps) {
-      if (s.pd.in_collision) {
-        us.push_back(s.pd.time_us);
-        work.push_back(s.box_tests + s.triangle_tests);
-        cold += s.cold_restart;
-        not_free += !s.free_beyond;
-      }
-      if (s.has_budget && s.budget_in_collision) {
-        budget_us.push_back(s.budget_time_us);
-        stopped += !s.budget_converged;
-        budget_not_free += !s.budget_free;
-      }
-    }
-    row(r.spec.name, 0, std::to_string(r.path_seed), us, work, cold, not_free, budget_us, stopped, budget_not_free);
-    for (size_t k = 0; k < r.more_paths.size(); ++k) {
-      const HapticPathRun& p = r.more_paths[k];
-      row(r.spec.name, static_cast<int>(k) + 1, std::to_string(p.path_seed), p.us, p.work,
-          p.cold_restarts, p.not_free, p.budget_us, p.budget_stopped, p.budget_not_free);
-    }
+    row(r.spec.name, 0, FirstHapticPathRun(r));
+    for (size_t k = 0; k < r.more_paths.size(); ++k)
+      row(r.spec.name, static_cast<int>(k) + 1, r.more_paths[k]);
   }
   return name;
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <utility>
 
+#include "bench/runs/answer_free.h"
 #include "bench/runs/fcl_baselines.h"
 #include "bench/common/progress.h"
 #include "bench/runs/reference_runner.h"
@@ -34,14 +35,6 @@ void SolveAlongPath(const BenchPair& pair, const HapticPath& path, const pd::Iso
     });
     on_answer(c, r, p);
   }
-}
-
-// The answer q_S (the probe's translation, in S) is free, and so is the
-// probe kHapticFreeMargin of the pair's size further out along it.
-bool AnswerFreeBeyond(const pd::ModelPair& mp, const pd::Vector3& q_S) {
-  const double n = q_S.norm();
-  return !pd::InCollision(mp, q_S) &&
-         (n == 0 || !pd::InCollision(mp, q_S * (1.0 + kHapticFreeMargin * mp.size() / n)));
 }
 
 }  // namespace
@@ -138,6 +131,10 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       HapticPathRun run;
       run.path_seed = HapticPathSeed(st.seed + k);
       const HapticPath more = MakeHapticPath(pair, spec, st.haptic_steps, run.path_seed);
+      auto free_answer = [&](const Case& c, const pd::PenetrationResult& r) {
+        const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, c.X_WP, X_WS);
+        return r.valid && AnswerFreeBeyond(mp, X_WS.linear().transpose() * r.translation_W);
+      };
       bool previous_seen = false;
       SolveAlongPath(pair, more, X_WS, deferring, [&](const Case& c, const pd::PenetrationResult& r,
                                                        const pd::PolyDepthSolver::Preparation&) {
@@ -148,8 +145,7 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
         run.work.push_back(static_cast<double>(r.box_tests + r.triangle_tests));
         run.depth.push_back(r.depth);
         run.cold_restarts += seen && r.warm_start_failed;
-        const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, c.X_WP, X_WS);
-        run.not_free += !(r.valid && AnswerFreeBeyond(mp, X_WS.linear().transpose() * r.translation_W));
+        run.not_free += !free_answer(c, r);
       });
       if (st.haptic_budget_us > 0.0)
         SolveAlongPath(pair, more, X_WS, bounded, [&](const Case& c, const pd::PenetrationResult& r,
@@ -157,9 +153,7 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
           if (!r.in_collision) return;
           run.budget_us.push_back(r.time_us);
           run.budget_stopped += !r.converged;
-          const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, c.X_WP, X_WS);
-          run.budget_not_free +=
-              !(r.valid && AnswerFreeBeyond(mp, X_WS.linear().transpose() * r.translation_W));
+          run.budget_not_free += !free_answer(c, r);
         });
       out.more_paths.push_back(std::move(run));
       bar.Tick();
@@ -173,7 +167,7 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, s.c.X_WP, X_WS);
       const pd::Vector3 q_S = X_WS.linear().transpose() * s.pd.translation_W;
       s.pd.verified_free = !pd::InCollision(mp, q_S);
-      s.free_beyond = AnswerFreeBeyond(mp, q_S);
+      s.free_beyond = s.pd.verified_free && FreeFurtherAlong(mp, q_S);
       if (s.has_budget && s.budget_in_collision && s.budget_free) {
         const pd::Vector3 b_S = X_WS.linear().transpose() * s.budget_translation_W;
         s.budget_free = AnswerFreeBeyond(mp, b_S);
@@ -306,55 +300,55 @@ HapticSummary SummarizeHaptic(const HapticPairResult& r) {
   return m;
 }
 
+HapticPathRun FirstHapticPathRun(const HapticPairResult& r) {
+  HapticPathRun p;
+  p.path_seed = r.path_seed;
+  for (const HapticStep& s : r.steps) {
+    if (s.pd.in_collision) {
+      p.us.push_back(s.pd.time_us);
+      p.work.push_back(s.box_tests + s.triangle_tests);
+      p.depth.push_back(s.pd.depth);
+      p.cold_restarts += s.cold_restart;
+      p.not_free += !s.free_beyond;
+    }
+    if (s.has_budget && s.budget_in_collision) {
+      p.budget_us.push_back(s.budget_time_us);
+      p.budget_stopped += !s.budget_converged;
+      p.budget_not_free += !s.budget_free;
+    }
+  }
+  return p;
+}
+
 HapticPathsSummary SummarizeHapticPaths(const HapticPairResult& r, double target_max_us) {
   HapticPathsSummary m;
   double max_all = 0.0, in_range = 0.0, p99 = 0.0, work = 0.0, budget_all = 0.0;
   bool any_budget = false;
-  auto add_path = [&](const std::vector<double>& us, const std::vector<double>& depth,
-                      const std::vector<double>& works, const std::vector<double>& budget_us) {
+  auto add_path = [&](const HapticPathRun& p) {
     ++m.paths;
-    m.colliding += static_cast<int>(us.size());
-    const Summary t = Summarize(us);
+    m.colliding += static_cast<int>(p.us.size());
+    const Summary t = Summarize(p.us);
     m.max_us.push_back(t.max);
     m.paths_over_target += t.max > target_max_us;
     max_all = std::max(max_all, t.max);
     p99 = std::max(p99, t.p99);
-    for (size_t i = 0; i < us.size(); ++i)
-      if (depth[i] <= kHapticTargetMaxDepth) in_range = std::max(in_range, us[i]);
-    for (double w : works) work = std::max(work, w);
-    if (!budget_us.empty()) {
+    for (size_t i = 0; i < p.us.size(); ++i)
+      if (p.depth[i] <= kHapticTargetMaxDepth) in_range = std::max(in_range, p.us[i]);
+    for (double w : p.work) work = std::max(work, w);
+    m.cold_restarts += p.cold_restarts;
+    m.not_free += p.not_free;
+    m.budget_stopped += p.budget_stopped;
+    m.budget_not_free += p.budget_not_free;
+    if (!p.budget_us.empty()) {
       any_budget = true;
-      const double b = Summarize(budget_us).max;
+      const double b = Summarize(p.budget_us).max;
       m.budget_max_us.push_back(b);
       m.budget_paths_over_target += b > target_max_us;
       budget_all = std::max(budget_all, b);
     }
   };
-  {
-    std::vector<double> us, depth, works, budget_us;
-    for (const HapticStep& s : r.steps) {
-      if (s.pd.in_collision) {
-        us.push_back(s.pd.time_us);
-        depth.push_back(s.pd.depth);
-        works.push_back(s.box_tests + s.triangle_tests);
-        m.cold_restarts += s.cold_restart;
-        m.not_free += !s.free_beyond;
-      }
-      if (s.has_budget && s.budget_in_collision) {
-        budget_us.push_back(s.budget_time_us);
-        m.budget_stopped += !s.budget_converged;
-        m.budget_not_free += !s.budget_free;
-      }
-    }
-    add_path(us, depth, works, budget_us);
-  }
-  for (const HapticPathRun& p : r.more_paths) {
-    add_path(p.us, p.depth, p.work, p.budget_us);
-    m.cold_restarts += p.cold_restarts;
-    m.not_free += p.not_free;
-    m.budget_stopped += p.budget_stopped;
-    m.budget_not_free += p.budget_not_free;
-  }
+  add_path(FirstHapticPathRun(r));
+  for (const HapticPathRun& p : r.more_paths) add_path(p);
   m.max_us_all = max_all;
   m.in_range_max_us = in_range;
   m.worst_p99_us = p99;

@@ -77,6 +77,8 @@ struct HapticPathsSummary {
 
 HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec,
                                const RunSettings& st);
+// The first path's colliding poses in the form of the more paths' runs.
+HapticPathRun FirstHapticPathRun(const HapticPairResult& r);
 HapticPathsSummary SummarizeHapticPaths(const HapticPairResult& r, double target_max_us);
 HapticSummary SummarizeHaptic(const HapticPairResult& r);
 

@@ -1,5 +1,6 @@
 #include "bench/runs/pd_runner.h"
 
+#include "bench/runs/answer_free.h"
 #include "pd_core/proximity/mesh_collision.h"
 #include "pd_core/proximity/model_pair.h"
 
@@ -25,10 +26,7 @@ PdOutcome Check(const BenchPair& pair, const Case& c, const pd::Isometry3& X_WS,
   const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, c.X_WP, X_WS);
   const pd::Vector3 offset_S = X_WS.linear().transpose() * r.translation_W;
   o.verified_free = !pd::InCollision(mp, offset_S);
-  const double depth = offset_S.norm();
-  o.free_beyond = o.verified_free &&
-                  (depth <= 0 || !pd::InCollision(mp, (1.0 + kHapticFreeMargin * mp.size() / depth) *
-                                                          offset_S));
+  o.free_beyond = o.verified_free && FreeFurtherAlong(mp, offset_S);
   o.in_pocket = o.verified_free && r.depth > 0 &&
                 pd::InCollision(mp, (1.0 + kPocketProbe) * offset_S);
   return o;

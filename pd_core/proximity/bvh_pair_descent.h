@@ -275,6 +275,19 @@ struct Descent {
 }  // namespace internal
 
 inline constexpr int kDescentStackCapacity = 192;
+
+namespace internal {
+// The caller's stop for a descent `d`, with d's box tests so far counted
+// first (a work budget reads the counters; a descent counted them only when
+// it ended).
+template <typename D, typename Stop>
+auto CountedStop(D& d, ProximityCounters* counters, Stop& stop) {
+  return [&d, counters, &stop] {
+    if (counters) counters->box_tests += std::exchange(d.tests, 0);
+    return stop();
+  };
+}
+}  // namespace internal
 // Pending pairs a best-first descent holds before it falls back to
 // depth-first for a popped pair's subtree (16 bytes each, on the stack).
 inline constexpr int kBestFirstHeapCapacity = 1024;
@@ -318,12 +331,7 @@ bool DescendBvhPair(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test, Alive&&
       d{bvh_P.nodes(), bvh_S.nodes(), test, alive, on_leaf_pair};
   d.tests = 1;
   d.cut = cut;
-  // The box tests so far are counted before each stop() (a work budget
-  // reads the counters).
-  auto counted_stop = [&] {
-    if (counters) counters->box_tests += std::exchange(d.tests, 0);
-    return stop();
-  };
+  auto counted_stop = internal::CountedStop(d, counters, stop);
   bool completed = true;
   // The root's parent key: the lowest there is.
   internal::DescentEntry root{root_P, root_S, -std::numeric_limits<double>::infinity()};

@@ -13,7 +13,6 @@
 // the cut (about half a descent's box tests).
 #include <cstddef>
 #include <limits>
-#include <utility>
 #include <vector>
 
 #include "pd_core/geometry/pose.h"
@@ -118,12 +117,7 @@ bool DescendBvhPairFromFront(const Bvh& bvh_P, const Bvh& bvh_S, NodeTest&& test
     return false;
   };
   bool completed = true;
-  // The box tests so far are counted before each stop() (a work budget
-  // reads the counters).
-  auto counted_stop = [&] {
-    if (counters) counters->box_tests += std::exchange(d.tests, 0);
-    return stop();
-  };
+  auto counted_stop = internal::CountedStop(d, counters, stop);
   auto run = [&](auto& stack) {
     internal::DescentEntry e;
     if constexpr (kOrder == DescentOrder::kBestFirst) {
