@@ -252,9 +252,12 @@ TEST(GeometryThread, RealMeshColdQueriesOfManyMsStillGetAWrenchEveryTick) {
   EXPECT_GE(max_query_us, kSlowQuery_us);
   EXPECT_EQ(sink.gaps, 0);
   ASSERT_GT(sink.n, 500u);
-  // No tick ran a query itself: a tick's CPU time (which a loaded machine
-  // cannot stretch, unlike its wall time) stays far below a slow query's.
-  EXPECT_LT(s.tick_cpu_max_us, 1000.0);
+  // No tick ran a query itself: a tick's CPU time stays far below a slow
+  // query's. The 99th percentile, not the max: on this VM a vCPU stolen
+  // while the thread is current is charged to it, and CI saw one tick of
+  // 2.1 ms CPU time here. Ticks that ran the ~240 queries (4 ms or more
+  // each) would put about a fifth of the 1200 ticks above 1 ms.
+  EXPECT_LT(s.tick_cpu_p99_us, 1000.0);
   // Wrenches kept coming while the queries ran: a tick that waited would
   // leave a gap about as long as a slow query at every cold answer (8
   // jumps). A loaded machine stalls an unprivileged thread now and then:
