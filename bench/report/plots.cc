@@ -35,6 +35,13 @@ SweepPoint Point(const SweepRow& r, const std::string& label, double order) {
   return {r.median_us, 100 * r.mean_abs_error, label, order};
 }
 
+// Where a knob's value sits along its curve: a time budget of 0 is none
+// (the slowest end).
+double KnobOrder(const std::string& knob, const std::string& value) {
+  const double v = std::stod(value);
+  return knob == "max_time_us" && v <= 0.0 ? 1e300 : v;
+}
+
 bool Plottable(const SweepRow& r) {
   return !std::isnan(r.median_us) && !std::isnan(r.mean_abs_error);
 }
@@ -46,7 +53,7 @@ void SweepPlot(const BenchRun& run, std::ostream& gp) {
   const int cols = n > 1 ? 2 : 1, rows = (n + cols - 1) / cols;
   const auto knobs = SweptKnobDefaults();
   const char* colour[] = {"#1f77b4", "#ff7f0e", "#9467bd", "#8c564b",
-                          "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#aec7e8"};
+                          "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#aec7e8", "#393b79"};
   const size_t num_colours = sizeof(colour) / sizeof(colour[0]);
   gp << "set terminal pngcairo size " << 900 * cols << "," << 600 * rows
      << " font 'DejaVu Sans,10'\n"
@@ -64,9 +71,9 @@ void SweepPlot(const BenchRun& run, std::ostream& gp) {
       std::vector<SweepPoint> pts;
       for (const SweepRow& r : run.sweep) {
         if (r.pair != id || r.scenario != Scenario::kRandom || !Plottable(r)) continue;
-        if (r.knob == knobs[k].first) pts.push_back(Point(r, r.value, std::stod(r.value)));
+        if (r.knob == knobs[k].first) pts.push_back(Point(r, r.value, KnobOrder(r.knob, r.value)));
         if (r.knob.empty())
-          pts.push_back(Point(r, knobs[k].second, std::stod(knobs[k].second)));
+          pts.push_back(Point(r, knobs[k].second, KnobOrder(knobs[k].first, knobs[k].second)));
       }
       if (pts.empty()) continue;
       const std::string block = "$s_" + id + "_" + std::to_string(k);

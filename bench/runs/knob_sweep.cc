@@ -52,7 +52,8 @@ std::vector<std::pair<std::string, std::string>> SweptKnobDefaults() {
           {"cold_join", value(Label("cold_join", d.cold_join))},
           {"cold_screen_tol", value(Label("cold_screen_tol", d.cold_screen_tol, "%.0e"))},
           {"cold_inner_probes", value(Label("cold_inner_probes", d.cold_inner_probes))},
-          {"cold_deep_probes", value(Label("cold_deep_probes", d.cold_deep_probes))}};
+          {"cold_deep_probes", value(Label("cold_deep_probes", d.cold_deep_probes))},
+          {"max_time_us", value(Label("max_time_us", d.max_time_us))}};
 }
 
 std::vector<KnobConfig> SweepConfigs() {
@@ -74,15 +75,18 @@ std::vector<KnobConfig> SweepConfigs() {
   using Doubles = std::initializer_list<double>;
   sweep("max_iterations", &O::max_iterations, Ints{1, 2, 4, 8, 40});
   sweep("convergence_tol", &O::convergence_tol, Doubles{1e-3, 1e-4, 1e-5, 1e-6}, "%.0e");
-  sweep("num_maximally_clear", &O::num_maximally_clear, Ints{1, 3, 6, 12, 24});
-  sweep("num_iterated_starts", &O::num_iterated_starts, Ints{1, 2, 4, 8});
-  sweep("num_random", &O::num_random, Ints{0, 1, 2, 3, 4});
+  sweep("num_maximally_clear", &O::num_maximally_clear, Ints{8, 24, 48, 96, 128});
+  sweep("num_iterated_starts", &O::num_iterated_starts, Ints{1, 2, 3, 4, 8});
+  sweep("num_random", &O::num_random, Ints{0, 2, 4});
   // Speed for accuracy (off by default).
   sweep("cold_join", &O::cold_join, Doubles{0.0, 1e-2, 2e-2, 5e-2});
   sweep("cold_screen_tol", &O::cold_screen_tol, Doubles{0.0, 3e-4, 1e-3, 3e-3}, "%.0e");
   sweep("cold_inner_probes", &O::cold_inner_probes, Ints{0, 48});  // what the inner probes buy
   // Accuracy for speed (off by default).
   sweep("cold_deep_probes", &O::cold_deep_probes, Ints{0, 2});
+  // Bounded time (PolyDepthOptions::max_time_us; unbounded by default): what
+  // a caller who cannot wait gets from a cold query.
+  sweep("max_time_us", &O::max_time_us, Doubles{0.0, 1000.0, 3000.0});
   out.push_back({"default", d, true, true});
   KnobConfig cold{"warm_start=off", d, true};
   cold.options.warm_start = false;

@@ -121,12 +121,19 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   // The cold search's speed-for-accuracy knobs (PolyDepthOptions documents
   // each with its measured trade; bench_pd's knob sweep measures them per pair).
+  app.add_option("--landings", options.num_maximally_clear,
+                 "cold: support-plane starts out-projected onto the contact space, ranked by "
+                 "where they land")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--iterated-starts", options.num_iterated_starts,
-                 "cold: starts refined by iteration, closest landing first (default 4)")
-      ->check(CLI::PositiveNumber);
+                 "cold: starts refined by iteration, closest landing first")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--inner-probes", options.cold_inner_probes,
                  "cold: directions probed inside the best answer for shorter escapes "
-                 "(default 48; 0: off)")
+                 "(0: off)")
+      ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--deep-probes", options.cold_deep_probes,
                  "cold: free probes deeper inside the best answer that are refined "

@@ -124,6 +124,9 @@ constexpr double kAnchorProbeCos = 0.985;  // 10 degrees
 // (cow 3.02 -> 3.16%, fandisk 1.07 -> 1.23%, knot1_bunny 0.48 -> 0.23%:
 // which basin a path follows moves either way).
 constexpr double kProvedSlack = 1.0 / kCheckRadius - 1.0;
+// A cold query ranks the best num_maximally_clear of at least this many
+// support-plane directions.
+constexpr int kMinSupportDirections = 48;
 // Directions of PolyDepthOptions::cold_deep_probes (96 against 48 or 192:
 // the same torus-knot error as 192 at three quarters of its work).
 constexpr int kDeepProbeDirections = 96;
@@ -556,7 +559,7 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
   impl_->pocket_constraints.reserve(1024);
   impl_->joined.reserve(1024);
   impl_->earlier.reserve(1024);
-  impl_->starts.reserve(64);
+  impl_->starts.reserve(128);
   impl_->trail.reserve(512);
   impl_->qp.unique.reserve(1024);
   impl_->qp.lambda.reserve(1024);
@@ -899,7 +902,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     s.rng.seed(options_.seed);
     const int num_clear = options_.num_maximally_clear;
     const int num_iterated = options_.num_iterated_starts;
-    ComputeSupportPlaneStarts(pair, &s.support_starts);
+    ComputeSupportPlaneStarts(pair, std::max(num_clear, kMinSupportDirections), &s.support_starts);
     // Maximally clear: the best support-plane separations of the two models.
     for (int i = 0; i < std::min<int>(num_clear, s.support_starts.size()); ++i)
       s.starts.push_back({s.support_starts[i].q_S, Initializer::kMaximallyClear});

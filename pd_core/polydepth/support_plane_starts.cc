@@ -1,26 +1,11 @@
 #include "pd_core/polydepth/support_plane_starts.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 #include "pd_core/geometry/fibonacci_sphere.h"
 
 namespace pd {
-namespace {
-
-constexpr int kNumDirections = 48;
-
-const std::array<Vector3, kNumDirections>& Directions() {
-  static const std::array<Vector3, kNumDirections> dirs = [] {
-    std::array<Vector3, kNumDirections> d;
-    for (int i = 0; i < kNumDirections; ++i) d[i] = FibonacciDirection(i, kNumDirections);
-    return d;
-  }();
-  return dirs;
-}
-
-}  // namespace
 
 Vector3 SupportPlaneTranslation(const ModelPair& pair, const Vector3& u_S) {
   // Probe moved by lambda*u is beyond the plane u·x = h_S(u) when
@@ -33,10 +18,11 @@ Vector3 SupportPlaneTranslation(const ModelPair& pair, const Vector3& u_S) {
   return std::max(lambda, 1e-6 * pair.size()) * u_S;
 }
 
-void ComputeSupportPlaneStarts(const ModelPair& pair, std::vector<SupportPlaneStart>* out) {
+void ComputeSupportPlaneStarts(const ModelPair& pair, int num_directions,
+                               std::vector<SupportPlaneStart>* out) {
   out->clear();
-  for (const Vector3& u : Directions()) {
-    const Vector3 q = SupportPlaneTranslation(pair, u);
+  for (int i = 0; i < num_directions; ++i) {
+    const Vector3 q = SupportPlaneTranslation(pair, FibonacciDirection(i, num_directions));
     out->push_back({q, q.norm()});
   }
   std::sort(out->begin(), out->end(),

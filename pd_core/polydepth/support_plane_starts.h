@@ -18,7 +18,9 @@ struct SupportPlaneStart {
 // Separating translation along unit u_S (m, in S).
 Vector3 SupportPlaneTranslation(const ModelPair& pair, const Vector3& u_S);
 
-// Separating translations along a fixed spread of directions, shortest first.
-void ComputeSupportPlaneStarts(const ModelPair& pair, std::vector<SupportPlaneStart>* out);
+// Separating translations along num_directions Fibonacci directions
+// (FibonacciDirection), shortest first.
+void ComputeSupportPlaneStarts(const ModelPair& pair, int num_directions,
+                               std::vector<SupportPlaneStart>* out);
 
 }  // namespace pd

@@ -198,6 +198,16 @@ TEST(ColdPolyDepth, RealPairIsScaleInvariant) {
   }
 }
 
+// The cold starts the join and screening knobs were measured with: 8
+// support-plane landings and 2 random ones, 4 of them iterated.
+PolyDepthOptions FourIteratedStarts() {
+  PolyDepthOptions o;
+  o.num_maximally_clear = 8;
+  o.num_random = 2;
+  o.num_iterated_starts = 4;
+  return o;
+}
+
 // With PolyDepthOptions::cold_join (off by default) a cold start whose
 // iterate comes near where an earlier start went (and ended no deeper)
 // stops there: less work over the starts, the same answers within 1% on
@@ -209,9 +219,12 @@ TEST(ColdPolyDepth, StartsJoiningAnEarlierStartsDescentSaveWorkNotDepth) {
   const ColdPoses c = LoadColdPoses("elephant.off", "cow.off", 5);
   ASSERT_EQ(c.poses.size(), 6u);
   const auto& [P, S, X_WS, poses] = c;
-  const PolyDepthOptions off;  // the default
+  // Measured with 4 iterated starts of 8 support-plane landings and 2
+  // random ones (the defaults then): the join saves work where several
+  // starts descend into one optimum.
+  const PolyDepthOptions off = FourIteratedStarts();
   ASSERT_EQ(off.cold_join, 0.0);
-  PolyDepthOptions on;
+  PolyDepthOptions on = off;
   on.cold_join = 2e-2;
   int64_t work_on = 0, work_off = 0;
   for (size_t i = 0; i < poses.size(); ++i) {
@@ -228,6 +241,30 @@ TEST(ColdPolyDepth, StartsJoiningAnEarlierStartsDescentSaveWorkNotDepth) {
   EXPECT_LT(work_on, 0.95 * work_off);
 }
 
+// A cold query lands the best num_maximally_clear of max(that, 48)
+// support-plane directions (96 by default) and the centroid start, every
+// one counted in `starts` (with the inner probes it out-projects), and
+// iterates num_iterated_starts of them. (What more landings buy in accuracy
+// is bench_pd's to measure: PolyDepthOptions documents it.)
+TEST(ColdPolyDepth, EverySupportPlaneStartIsLandedAndCounted) {
+  PD_REQUIRE_FILE(kMeshDir + "/elephant.off", "run scripts/fetch_meshes.sh");
+  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
+  const ColdPoses c = LoadColdPoses("elephant.off", "cow.off", 5);
+  PolyDepthOptions no_inner;
+  no_inner.cold_inner_probes = 0;
+  ASSERT_EQ(no_inner.num_maximally_clear, 96);
+  ASSERT_EQ(no_inner.num_random, 0);
+  PolyDepthOptions few = no_inner;
+  few.num_maximally_clear = 8;
+  for (size_t i = 0; i < c.poses.size(); ++i) {
+    const PenetrationResult a = PolyDepthSolver(c.P, c.S, no_inner).Solve(c.poses[i], c.X_WS);
+    const PenetrationResult b = PolyDepthSolver(c.P, c.S, few).Solve(c.poses[i], c.X_WS);
+    ASSERT_TRUE(a.valid && b.valid) << "pose " << i;
+    EXPECT_EQ(a.starts, 96 + 1) << "pose " << i;
+    EXPECT_EQ(b.starts, 8 + 1) << "pose " << i;
+  }
+}
+
 // Screening (PolyDepthOptions::cold_screen_tol, a speed-for-accuracy knob,
 // off by default): the iterated starts stop at the coarse tolerance and only
 // the best goes on. On these poses it saves a fifth of the work or more;
@@ -240,9 +277,11 @@ TEST(ColdPolyDepth, ScreenedStartsSaveWorkNotDepth) {
   const ColdPoses c = LoadColdPoses("knot1.off", "cow.off", 8);
   ASSERT_EQ(c.poses.size(), 6u);
   const auto& [P, S, X_WS, poses] = c;
-  const PolyDepthOptions off;  // the default
+  // With several iterated starts to screen (as measured: see
+  // FourIteratedStarts).
+  const PolyDepthOptions off = FourIteratedStarts();
   ASSERT_LE(off.cold_screen_tol, off.convergence_tol);
-  PolyDepthOptions on;
+  PolyDepthOptions on = off;
   on.cold_screen_tol = 1e-3;
   int64_t work_on = 0, work_off = 0;
   double depth_on = 0.0, depth_off = 0.0;

@@ -63,7 +63,7 @@ struct TouchingPair {
     }
     const ModelPair pair = Pair();
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     const Vector3 from = starts[0].q_S;
     const double s = FirstContactAlongTranslation(pair, from, -from);
     q_c = from - (s - 1e-8 * pair.size() / from.norm()) * from;

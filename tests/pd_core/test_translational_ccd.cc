@@ -129,7 +129,7 @@ TEST_F(TranslationalCcd, FirstContactEqualsBruteForceOverAllTrianglePairsOnRealM
   for (int k = 0; k < 4; ++k) {
     const ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     // Out-projections as PolyDepth makes them: a free support-plane start
     // toward the query; and a short sweep from there in a random direction
     // (mostly free).
@@ -168,7 +168,7 @@ TEST_F(TranslationalCcd, FirstContactFromTouchingConfigurationsEqualsBruteForce)
   for (int k = 0; k < 3; ++k) {
     const ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     for (int i : {0, 3}) {
       const Vector3 from = starts[i].q_S;
       const double s = FirstContactAlongTranslation(pair, from, -from);
@@ -212,7 +212,7 @@ TEST_F(TranslationalCcd, EarlyStopBeforeSStopReportsAContactAndIsExactAfterIt) {
   for (int k = 0; k < 3; ++k) {
     const ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     for (int i : {0, 2, 4}) {
       const Vector3 from = starts[i].q_S;
       const double brute = BruteForceFirstContact(pair, from, -from);
@@ -249,7 +249,7 @@ TEST_F(TranslationalCcd, AStoppedSearchReturnsAFreePointNoLaterThanTheFirstConta
   for (int k = 0; k < 2; ++k) {
     ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     for (size_t i = 0; i < std::min<size_t>(starts.size(), 4); ++i) {
       const Vector3 from = starts[i].q_S, sweep = -starts[i].q_S;
       const double exact = BruteForceFirstContact(pair, from, sweep);
@@ -288,7 +288,7 @@ TEST_F(TranslationalCcd, AStoppedListWalkReturnsTheFreePartItWalked) {
   for (int k = 0; k < 3; ++k) {
     ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     const Vector3 from = starts[0].q_S;
     CandidatePairs list;
     list.Build(pair, from, 0.03 * pair.size(), CandidatePairs::Grain::kLeafPairs);
@@ -333,7 +333,7 @@ TEST_F(TranslationalCcd, AWorkBudgetStopsEachPathOfTheSearchWithinAFewTestsOfIt)
   for (int k = 0; k < 12; ++k) {
     const ModelPair plain(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(plain, &starts);
+    ComputeSupportPlaneStarts(plain, 48, &starts);
     // From the contact (a start landed, a hair back) along it, as a
     // search's sweeps go: the pairs touching at the start cost most.
     const double landed = FirstContactAlongTranslation(plain, starts[0].q_S, -starts[0].q_S);
@@ -414,7 +414,7 @@ TEST_F(TranslationalCcd, FirstContactThroughACandidateListEqualsBruteForceAfterM
     const Isometry3 X_WP = CollidingPose(P, S, rng);
     const ModelPair pair(*P, *S, X_WP, Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     // A configuration just off the contact: a start out-projected to it.
     const Vector3 from = starts[0].q_S;
     const double s = FirstContactAlongTranslation(pair, from, -from);
@@ -472,7 +472,7 @@ TEST_F(TranslationalCcd, FirstContactPastTheListEqualsBruteForce) {
     const Isometry3 X_WP = CollidingPose(P, S, rng);
     ModelPair pair(*P, *S, X_WP, Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     for (int i = 0; i < 2; ++i) {
       // From a free support-plane start toward the query, with the list
       // built around the start.
@@ -509,7 +509,7 @@ TEST_F(TranslationalCcd, BestFirstDescentFindsTheSameContactWithFewerBoxTestsOnL
   for (int k = 0; k < 6; ++k) {
     const ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     for (int i = 0; i < 8; ++i) {
       // Long sweeps: from a maximally clear start all the way to the query.
       const Vector3 from = starts[i].q_S, sweep = -from;
@@ -549,7 +549,7 @@ TEST_F(TranslationalCcd, ASweepFromTheLastLandingStartsAtItsCutAndFindsTheSameCo
     pair.counters = &counters;
     const ModelPair plain(*P, *S, X, Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(plain, &starts);
+    ComputeSupportPlaneStarts(plain, 48, &starts);
     Vector3 q = starts[0].q_S;
     Vector3 sweep = -q;
     for (int step = 0; step < 8; ++step) {
@@ -609,7 +609,7 @@ TEST_F(TranslationalCcd, RecordHoldsEveryLeafPairNearTheLandingPointAndLocalises
   for (int k = 0; k < 3; ++k) {
     ModelPair pair(*P, *S, CollidingPose(P, S, rng), Isometry3::Identity());
     std::vector<SupportPlaneStart> starts;
-    ComputeSupportPlaneStarts(pair, &starts);
+    ComputeSupportPlaneStarts(pair, 48, &starts);
     for (int i : {0, 2, 5}) {
       const Vector3 from = starts[i].q_S;
       LeafPairRecord record;
