@@ -55,12 +55,17 @@ struct PolyDepthOptions {
   // against the reference (torus knot aside), against 8 landings with 4
   // iterated and 2 random starts (the defaults before):
   //   96 landings, 3 iterated: mean error 1.23 / 1.82% -> 0.46 / 0.87%,
-  //     p95 7.9 / 10.9% -> 2.1 / 2.7%, box and triangle tests +15%;
+  //     p95 7.9 / 10.9% -> 2.1 / 2.7%, box and triangle tests +15%, but
+  //     median time +25-65% (4 pairs, back to back): a landing's tests
+  //     are swept from far outside and cost more each than an
+  //     iteration's; in the full bench's knob sweep 8 landings run at
+  //     0.42-0.59x of this default's median;
   //   96 landings, 2 iterated: 0.51 / 1.08%, p95 2.2 / 4.6%, tests -4%
   //     (a convex ball on a box ends 0.14% above the exact PD: the test's
   //     0.1% needs the third start);
   //   64 landings, 3 iterated: 0.87 / 0.87%, tests +1%.
-  // Random starts added nothing there.
+  // Random starts added nothing there. A time or work budget does not
+  // shorten the landings: the first answer comes after them (see max_work).
   int num_maximally_clear = 96;
   bool use_centroid = true;
   int num_random = 0;              // random-direction starts on a cold query
