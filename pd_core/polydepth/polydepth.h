@@ -73,8 +73,9 @@ struct PolyDepthOptions {
   // The iterated cold starts stop once a step gains less than this (fraction
   // of size; at or below convergence_tol: off); the best of them then goes
   // on to convergence_tol alone. (Measured below with the earlier cold
-  // starts: 8 landings, 4 iterated; as is cold_join's.) A start's descent creeps (median gain per
-  // step 0.6%), and the starts that end behind rarely overtake once slowed:
+  // starts: 8 landings, 4 iterated; as is cold_join's.) A start's descent
+  // creeps (median gain per step 0.6%), and the starts that end behind
+  // rarely overtake once slowed:
   // on 12 random cases each of 11 real pairs (bench_pd), 1e-3 took 15-44%
   // fewer box tests than off, mean errors within 0.4 points (torus_knot_3k
   // 44.7 -> 45.1%, anchor_knot 1.85 -> 2.01%, homer_triceratops 1.55 ->
