@@ -155,6 +155,12 @@ struct Start {
 
 namespace {
 
+// Under a budget, a cold query's landings stop once this share of it is
+// spent (with one landed): the rest iterates the closest landing. On 24
+// random cases of 13 real pairs at max_time_us 1000: mean error 19, 17
+// and 16% at 0.25, 0.5 and 0.8 (at 3000: 8.1, 8.5, 8.4%).
+constexpr double kColdLandingShare = 0.5;
+
 // Out-projection: from a free q_from toward q_to, the last free point before
 // first contact, backed off by `margin` (m) along the motion. Returns q_to if
 // the whole segment is free. *touched tells which. With `s_stop` (see
@@ -211,6 +217,7 @@ struct PolyDepthSolver::Impl {
   std::vector<ContactConstraint> constraints;
   MinNormScratch qp;
   std::vector<Start> starts;
+  CollisionWitness landing_witness;  // cold: the landings' threshold tests' (Solve)
   std::vector<double> landed_norms;  // cold: landing norms of the starts out-projected exactly
   std::vector<SupportPlaneStart> support_starts;
   std::vector<Vector3> inner_starts;  // cold: free probes below the best answer
@@ -335,11 +342,12 @@ struct PolyDepthSolver::Impl {
     return stopped_early = true;
   }
   const std::function<bool()> stop_ccd = [this] { return OutOfBudget(); };
-  bool BudgetSpent() const {
-    return (work_limit > 0 && counters.box_tests + counters.triangle_tests >= work_limit) ||
+  // True once `share` of the budget is spent (never without a budget).
+  bool BudgetSpent(double share = 1.0) const {
+    return (work_limit > 0 && counters.box_tests + counters.triangle_tests >= share * work_limit) ||
            (time_limit_us > 0 &&
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t_start)
-                    .count() >= time_limit_us);
+                    .count() >= share * time_limit_us);
   }
   // Warm-start state, relative to the scene (so a moving scene is fine).
   bool has_previous = false;       // previous frame collided and was solved
@@ -924,7 +932,16 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     // num_iterated-th closest so far: that start is not iterated, so its
     // exact landing point is not needed (the iterated ones are the same).
     s.landed_norms.clear();
-    for (Start& st : s.starts) {
+    s.landing_witness = CollisionWitness{};  // same query, same work
+    for (size_t k = 0; k < s.starts.size(); ++k) {
+      Start& st = s.starts[k];
+      // Bounded: the landings take at most kColdLandingShare of the budget
+      // once one has landed; the rest iterates the closest so far.
+      if (!s.landed_norms.empty() && s.BudgetSpent(kColdLandingShare)) {
+        s.stopped_early = true;
+        s.starts.resize(k);
+        break;
+      }
       st.contact_norm = 1e300;
       ++result.starts;
       const double len = st.q_S.norm();
@@ -939,12 +956,24 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         const double threshold = s.landed_norms[num_iterated - 1];
         s_stop = 1.0 + margin / len - threshold / len - 1e-9;
       }
+      // Colliding where it would land at the threshold, it lands farther:
+      // out of the running, settled by a collision test (~140 tests) instead
+      // of a sweep from outside the models (~1k). Same answers; on 24 random
+      // cases of 13 real pairs the cold median -40-53% (cow_cow 6.2 -> 3.7
+      // ms, dragon_dragon 12.8 -> 6.0 ms).
+      if (s_stop > 0.0 && s_stop < 1.0 &&
+          InCollision(pair, (1.0 - s_stop) * st.q_S, &s.landing_witness))
+        continue;
       bool touched = false, exact = true;
       st.contact_q_S =
           OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched, s_stop, &exact);
       if (!touched) continue;
       st.contact_norm = st.contact_q_S.norm();
-      if (exact) s.landed_norms.push_back(st.contact_norm);
+      if (!exact) continue;
+      s.landed_norms.push_back(st.contact_norm);
+      // A landing is free (the CCD's): the answer so far, should the
+      // budget end the query before any iteration.
+      s.Offer(st.contact_q_S, st.origin);
     }
     std::sort(s.starts.begin(), s.starts.end(),
               [](const Start& a, const Start& b) { return a.contact_norm < b.contact_norm; });

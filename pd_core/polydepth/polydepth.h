@@ -64,8 +64,8 @@ struct PolyDepthOptions {
   //     (a convex ball on a box ends 0.14% above the exact PD: the test's
   //     0.1% needs the third start);
   //   64 landings, 3 iterated: 0.87 / 0.87%, tests +1%.
-  // Random starts added nothing there. A time or work budget does not
-  // shorten the landings: the first answer comes after them (see max_work).
+  // Random starts added nothing there. Under a time or work budget the
+  // landings stop at half of it and each landing is an answer (see max_work).
   int num_maximally_clear = 96;
   bool use_centroid = true;
   int num_random = 0;              // random-direction starts on a cold query
@@ -137,6 +137,12 @@ struct PolyDepthOptions {
   // goes); the answer's finish comes after it: its collision test (usually
   // done by the search already), a pocket escape if it needs one, and its
   // localisation if the search had none there (the query's first answer).
+  // A cold query's first answer is its first landing (a free configuration
+  // on the contact space); its landings stop at half the budget, and the
+  // rest iterates the closest of them. On 24 random cases of 13 real pairs
+  // (2k-10k triangles) max_time_us 1000, 2000 and 3000 gave median times
+  // of 1.04-1.08, about 2 and 3 ms and mean errors of 16, 7.6 and 3.8%,
+  // against 0.46% unbounded (torus knot aside).
   int64_t max_work = 0;
   double max_time_us = 0.0;
   // Answer first, rebuild the list after: a warm query whose list no longer

@@ -90,6 +90,32 @@ TEST_F(BudgetTest, TimeBudgetStopsEarlyAndNeverAnswersColliding) {
   EXPECT_EQ(stopped, 8);
 }
 
+// A cold query's landings (support-plane starts out-projected onto the
+// contact space) stop at half the budget, and the rest of it iterates the
+// closest: a budget of an eighth of the unbounded query's work lands fewer
+// starts, iterates, and answers free within about the budget.
+TEST_F(BudgetTest, ABoundedColdQueryLandsFewerStartsAndIteratesTheClosest) {
+  int iterated = 0;
+  for (const Isometry3& X_WP : CollidingPoses(6)) {
+    PolyDepthSolver full(P, S);
+    const PenetrationResult a = full.Solve(X_WP, Isometry3::Identity());
+    ASSERT_TRUE(a.converged);
+    const int64_t work = a.box_tests + a.triangle_tests;
+    PolyDepthOptions bounded;
+    bounded.max_work = work / 8;
+    PolyDepthSolver quick(P, S, bounded);
+    const PenetrationResult b = quick.Solve(X_WP, Isometry3::Identity());
+    ASSERT_TRUE(b.valid);
+    EXPECT_FALSE(b.converged);
+    EXPECT_TRUE(FreeAtAnswer(P, X_WP, S, Isometry3::Identity(), b));
+    EXPECT_LT(b.starts, a.starts) << "work " << work;
+    // The budget, one landing or step past it, and the answer's finish.
+    EXPECT_LT(b.box_tests + b.triangle_tests, work / 4) << "work " << work;
+    iterated += b.iterations > 0;
+  }
+  EXPECT_GE(iterated, 5);
+}
+
 TEST_F(BudgetTest, EveryBudgetGivesAFreeAnswerNoShorterThanTheConvergedOne) {
   const std::vector<Isometry3> poses = CollidingPoses(4);
   for (int64_t work : {1, 10, 100, 1000, 10000, 100000}) {
