@@ -217,7 +217,6 @@ struct PolyDepthSolver::Impl {
   std::vector<ContactConstraint> constraints;
   MinNormScratch qp;
   std::vector<Start> starts;
-  CollisionWitness landing_witness;  // cold: the landings' threshold tests' (Solve)
   std::vector<double> landed_norms;  // cold: landing norms of the starts out-projected exactly
   std::vector<SupportPlaneStart> support_starts;
   std::vector<Vector3> inner_starts;  // cold: free probes below the best answer
@@ -336,6 +335,9 @@ struct PolyDepthSolver::Impl {
   double time_limit_us = 0.0;
   std::chrono::steady_clock::time_point t_start;
   bool stopped_early = false;
+  // A cold query's landings stopped at kColdLandingShare of the budget: not
+  // converged, but the search goes on (stopped_early would end it).
+  bool landings_cut = false;
   // True once the budget is spent and some verified answer exists.
   bool OutOfBudget() {
     if (best_origin == Initializer::kNone || !BudgetSpent()) return false;
@@ -622,6 +624,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   s.work_limit = options_.max_work;
   s.time_limit_us = options_.max_time_us;
   s.stopped_early = false;
+  s.landings_cut = false;
   // Bounded time: once the budget is spent and a verified answer exists, a
   // CCD under way stops too, at a point it knows free (translational_ccd.h).
   if (s.work_limit > 0 || s.time_limit_us > 0.0) pair.stop_ccd = &s.stop_ccd;
@@ -932,13 +935,12 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     // num_iterated-th closest so far: that start is not iterated, so its
     // exact landing point is not needed (the iterated ones are the same).
     s.landed_norms.clear();
-    s.landing_witness = CollisionWitness{};  // same query, same work
     for (size_t k = 0; k < s.starts.size(); ++k) {
       Start& st = s.starts[k];
       // Bounded: the landings take at most kColdLandingShare of the budget
       // once one has landed; the rest iterates the closest so far.
       if (!s.landed_norms.empty() && s.BudgetSpent(kColdLandingShare)) {
-        s.stopped_early = true;
+        s.landings_cut = true;
         s.starts.resize(k);
         break;
       }
@@ -960,10 +962,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       // out of the running, settled by a collision test (~140 tests) instead
       // of a sweep from outside the models (~1k). Same answers; on 24 random
       // cases of 13 real pairs the cold median -40-53% (cow_cow 6.2 -> 3.7
-      // ms, dragon_dragon 12.8 -> 6.0 ms).
-      if (s_stop > 0.0 && s_stop < 1.0 &&
-          InCollision(pair, (1.0 - s_stop) * st.q_S, &s.landing_witness))
-        continue;
+      // ms, dragon_dragon 12.8 -> 6.0 ms). No collision witness: the last
+      // direction's intersecting pair and its neighbours (16 triangle tests)
+      // never intersect along the next (1.9% fewer tests without).
+      if (s_stop > 0.0 && s_stop < 1.0 && InCollision(pair, (1.0 - s_stop) * st.q_S)) continue;
       bool touched = false, exact = true;
       st.contact_q_S =
           OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched, s_stop, &exact);
@@ -1206,7 +1208,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   }
 
   result.valid = valid;
-  result.converged = !s.stopped_early;
+  result.converged = !s.stopped_early && !s.landings_cut;
   result.iterations = s.iterations;
   result.initializer = s.best_origin;
   if (s.best_origin != Initializer::kNone) {

@@ -140,9 +140,9 @@ struct PolyDepthOptions {
   // A cold query's first answer is its first landing (a free configuration
   // on the contact space); its landings stop at half the budget, and the
   // rest iterates the closest of them. On 24 random cases of 13 real pairs
-  // (2k-10k triangles) max_time_us 1000, 2000 and 3000 gave median times
-  // of 1.04-1.08, about 2 and 3 ms and mean errors of 16, 7.6 and 3.8%,
-  // against 0.46% unbounded (torus knot aside).
+  // (2k-10k triangles) max_time_us 1000 and 3000 gave median times of
+  // 1.00-1.04 and about 3 ms and mean errors of 10.4 and 1.1%, against
+  // 0.46% unbounded (torus knot aside).
   int64_t max_work = 0;
   double max_time_us = 0.0;
   // Answer first, rebuild the list after: a warm query whose list no longer

@@ -116,6 +116,31 @@ TEST_F(BudgetTest, ABoundedColdQueryLandsFewerStartsAndIteratesTheClosest) {
   EXPECT_GE(iterated, 5);
 }
 
+// The landing the budget leaves is iterated on while budget remains, step
+// after step (not only one step): with one iterated start and no inner
+// probes, half an unbounded query's work leaves room for several.
+TEST_F(BudgetTest, ABoundedColdQueryIteratesItsClosestLandingOnWithTheRestOfTheBudget) {
+  PolyDepthOptions one;
+  one.num_iterated_starts = 1;
+  one.cold_inner_probes = 0;
+  int stepped_on = 0, stopped = 0;
+  for (const Isometry3& X_WP : CollidingPoses(6)) {
+    PolyDepthSolver full(P, S, one);
+    const PenetrationResult a = full.Solve(X_WP, Isometry3::Identity());
+    PolyDepthOptions bounded = one;
+    bounded.max_work = (a.box_tests + a.triangle_tests) / 2;
+    PolyDepthSolver quick(P, S, bounded);
+    const PenetrationResult b = quick.Solve(X_WP, Isometry3::Identity());
+    ASSERT_TRUE(b.valid);
+    EXPECT_TRUE(FreeAtAnswer(P, X_WP, S, Isometry3::Identity(), b));
+    if (b.converged) continue;
+    ++stopped;
+    stepped_on += b.iterations >= 2;
+  }
+  ASSERT_GE(stopped, 4);
+  EXPECT_GE(stepped_on, stopped - 1);
+}
+
 TEST_F(BudgetTest, EveryBudgetGivesAFreeAnswerNoShorterThanTheConvergedOne) {
   const std::vector<Isometry3> poses = CollidingPoses(4);
   for (int64_t work : {1, 10, 100, 1000, 10000, 100000}) {
