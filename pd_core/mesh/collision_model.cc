@@ -93,6 +93,7 @@ std::shared_ptr<const CollisionModel> CollisionModel::Build(TriangleMesh mesh) {
     }
   }
   m->component_vertices_ = ComponentVertices(M);
+  m->inner_spheres_ = ComputeInnerSpheres(*m);  // needs the BVH and topology above
   return m;
 }
 
@@ -115,6 +116,7 @@ size_t CollisionModel::MemoryBytes() const {
   bytes += support_dirs_M_.capacity() * sizeof(Vector3) + support_values_.capacity() * sizeof(double);
   bytes += hull_vertices_.capacity() * sizeof(int) + owned_features_.capacity();
   bytes += component_vertices_.capacity() * sizeof(int);
+  bytes += inner_spheres_.capacity() * sizeof(InnerSphere);
   return bytes;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pd_core/proximity/bvh.h"
+#include "pd_core/mesh/inner_spheres.h"
 #include "pd_core/mesh/mesh.h"
 #include "pd_core/mesh/mesh_topology.h"
 
@@ -53,6 +54,10 @@ class CollisionModel {
   // one vertex per component (pd_core/proximity/solid_containment.h).
   const std::vector<int>& component_vertices() const { return component_vertices_; }
 
+  // Balls inside the solid (closed meshes only; inner_spheres.h): a cold
+  // search's deep collision tests are settled by their overlap first.
+  const std::vector<InnerSphere>& inner_spheres() const { return inner_spheres_; }
+
   // Heap bytes held by the model (mesh, topology, BVH, precomputation).
   size_t MemoryBytes() const;
 
@@ -71,6 +76,7 @@ class CollisionModel {
   std::vector<int> hull_vertices_;
   std::vector<uint8_t> owned_features_;
   std::vector<int> component_vertices_;
+  std::vector<InnerSphere> inner_spheres_;
 };
 
 }  // namespace pd

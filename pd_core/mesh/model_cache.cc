@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -19,7 +20,7 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'D', 'M', 'O', 'D', 'E', 'L', '\0'};
 // Bump when CollisionModel, Bvh, MeshTopology or this layout changes.
-constexpr uint32_t kFormatVersion = 3;  // 2: component_vertices_; 3: surface-area-split BVH
+constexpr uint32_t kFormatVersion = 4;  // 2: component_vertices_; 3: surface-area-split BVH; 4: inner_spheres_
 constexpr size_t kHeaderBytes = sizeof(kMagic) + 4 + 8 + 4;  // magic, version, payload size, crc
 
 uint32_t Crc32(const void* data, size_t bytes) {
@@ -125,6 +126,7 @@ struct ModelCacheAccess {
     w.PutVector(m.hull_vertices_);
     w.PutVector(m.owned_features_);
     w.PutVector(m.component_vertices_);
+    w.PutVector(m.inner_spheres_);
     return w.bytes();
   }
 
@@ -159,6 +161,7 @@ struct ModelCacheAccess {
     r.GetVector(&m->hull_vertices_);
     r.GetVector(&m->owned_features_);
     r.GetVector(&m->component_vertices_);
+    r.GetVector(&m->inner_spheres_);
     if (!r.ok() || !r.at_end()) {
       *problem = "payload does not parse (truncated or wrong layout)";
       return nullptr;
@@ -210,6 +213,12 @@ struct ModelCacheAccess {
     for (int v : m.component_vertices_)
       if (v < 0 || v >= nv) return fail("component vertices");
     if ((nt > 0) != !m.component_vertices_.empty()) return fail("component vertices");
+    // An inner sphere proves collisions: a stored one must be a real ball of
+    // a closed model (a wrong one would report contact where there is none).
+    if (!m.inner_spheres_.empty() && !m.topology_.closed()) return fail("inner spheres");
+    for (const InnerSphere& s : m.inner_spheres_)
+      if (!s.p_MC.allFinite() || !(s.radius > 0.0) || !std::isfinite(s.radius))
+        return fail("inner spheres");
     return true;
   }
 };

@@ -35,7 +35,7 @@ void InnerProbeStarts(const ModelPair& pair, double best_norm, int num_direction
     for (int i = 0; i < num_directions; ++i) {
       if (found >= max_out) return;
       const Vector3 q = f * best_norm * FibonacciDirection(i, num_directions);
-      if (!InCollision(pair, q)) {
+      if (!InCollisionExpectingDepth(pair, q)) {
         out_S->push_back(q);
         ++found;
       }

@@ -964,8 +964,14 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       // cases of 13 real pairs the cold median -40-53% (cow_cow 6.2 -> 3.7
       // ms, dragon_dragon 12.8 -> 6.0 ms). No collision witness: the last
       // direction's intersecting pair and its neighbours (16 triangle tests)
-      // never intersect along the next (1.9% fewer tests without).
-      if (s_stop > 0.0 && s_stop < 1.0 && InCollision(pair, (1.0 - s_stop) * st.q_S)) continue;
+      // never intersect along the next (1.9% fewer tests without). The
+      // models' inner spheres settle most of these (and the inner probes'
+      // tests) before any BVH test: same answers on 24 random cases of 13
+      // real pairs, collision work -33-65%, medians -5-24% (a mesh that is
+      // not closed has no spheres: dragon_dragon unchanged).
+      if (s_stop > 0.0 && s_stop < 1.0 &&
+          InCollisionExpectingDepth(pair, (1.0 - s_stop) * st.q_S))
+        continue;
       bool touched = false, exact = true;
       st.contact_q_S =
           OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched, s_stop, &exact);

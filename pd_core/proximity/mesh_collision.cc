@@ -1,6 +1,7 @@
 #include "pd_core/proximity/mesh_collision.h"
 
 #include "pd_core/proximity/box_overlap.h"
+#include "pd_core/proximity/inner_sphere_overlap.h"
 #include "pd_core/proximity/leaf_pairs_near.h"
 #include "pd_core/proximity/placed_probe_triangles.h"
 #include "pd_core/proximity/solid_containment.h"
@@ -70,6 +71,11 @@ bool InCollision(const ModelPair& pair, const Vector3& offset_S, CollisionWitnes
   // No surface crossing: disjoint, or a part of one wholly inside the other.
   WorkScope scope(pair.counters, QueryKind::kCollision);
   return SurfacesIntersect(pair, offset_S, witness) || AnyComponentInside(pair, offset_S);
+}
+
+bool InCollisionExpectingDepth(const ModelPair& pair, const Vector3& offset_S) {
+  WorkScope scope(pair.counters, QueryKind::kCollision);
+  return InnerSpheresOverlap(pair, offset_S) || InCollision(pair, offset_S);
 }
 
 }  // namespace pd

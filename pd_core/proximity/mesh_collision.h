@@ -22,4 +22,10 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S,
 bool InCollision(const ModelPair& pair, const Vector3& offset_S,
                  CollisionWitness* witness = nullptr);
 
+// InCollision for a configuration expected to lie deep inside (a cold
+// search's landing thresholds and inner probes): the models' inner spheres
+// overlapping settle most of those with no BVH test (inner_sphere_overlap.h);
+// the rest take InCollision. The same verdict.
+bool InCollisionExpectingDepth(const ModelPair& pair, const Vector3& offset_S);
+
 }  // namespace pd

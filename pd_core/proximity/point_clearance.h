@@ -12,4 +12,10 @@ namespace pd {
 bool SurfaceFartherThan(const CollisionModel& model, const Vector3& p_M, double radius,
                         ProximityCounters* counters = nullptr);
 
+// The distance (m) from p_M (model frame) to the nearest point of the
+// model's surface, or `max_distance` if no triangle comes nearer. One
+// descent, its reach shrinking to the nearest triangle found so far.
+double SurfaceDistance(const CollisionModel& model, const Vector3& p_M, double max_distance,
+                       ProximityCounters* counters = nullptr);
+
 }  // namespace pd

@@ -46,6 +46,8 @@ void ExpectSameModel(const pd::CollisionModel& a, const pd::CollisionModel& b) {
   EXPECT_TRUE(SameBytes(a.hull_vertices(), b.hull_vertices()));
   EXPECT_TRUE(SameBytes(a.owned_features(), b.owned_features()));
   EXPECT_TRUE(SameBytes(a.component_vertices(), b.component_vertices()));
+  EXPECT_TRUE(SameBytes(a.inner_spheres(), b.inner_spheres()));
+  EXPECT_EQ(a.inner_spheres().empty(), !a.closed());  // the torus is closed: it has some
 }
 
 class ModelCacheTest : public ::testing::Test {
