@@ -96,7 +96,8 @@ echo "run_loop_bench: $SECONDS_PER_RUN s per run; work directory $WORK" >&2
   echo "seconds_per_run=$SECONDS_PER_RUN"
   echo "command=bench/run_loop_bench.sh $([[ $QUICK == 1 ]] && echo --quick || echo "--minutes $MINUTES")"
   echo "commit=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
-  echo "dirty=$([[ -n "$(git -C "$ROOT" status --porcelain 2>/dev/null)" ]] && echo 1 || echo 0)"
+  # The committed reports (bench/results) are outputs, not the code measured.
+  echo "dirty=$([[ -n "$(git -C "$ROOT" status --porcelain -- . ':!bench/results' 2>/dev/null)" ]] && echo 1 || echo 0)"
   echo "start_utc=$(date -u '+%Y-%m-%d %H:%M:%S UTC')"
 } > "$WORK/meta.txt"
 

@@ -59,8 +59,10 @@ MachineInfo ReadMachineInfo(const std::string& source_dir) {
   const std::string git = "git -C '" + source_dir + "' ";
   m.git_commit = RunCommand(git + "rev-parse --short HEAD 2>/dev/null");
   if (m.git_commit.empty()) m.git_commit = "unknown";
-  // Uncommitted changes mean the hash alone does not identify the code measured.
-  else if (!RunCommand(git + "status --porcelain --untracked-files=no 2>/dev/null").empty())
+  // Uncommitted changes mean the hash alone does not identify the code measured
+  // (the committed reports in bench/results are outputs, not code).
+  else if (!RunCommand(git + "status --porcelain --untracked-files=no -- . ':!bench/results' "
+                             "2>/dev/null").empty())
     m.git_commit += "-dirty";
   m.build_type = PD_BUILD_TYPE;
 #if defined(__clang__)

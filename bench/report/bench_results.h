@@ -133,6 +133,8 @@ struct HapticStep {
   Case c;
   PdOutcome pd;
   bool free_beyond = false;   // still free kHapticFreeMargin * size further out
+  double cpu_us = kNaN;         // the query's CPU time (haptic_bench.cc, SolveAlongPath)
+  double budget_cpu_us = kNaN;  // the bounded pass's
   bool converged = true;      // result.converged
   bool cold_restart = false;  // colliding, not the first pose, warm start failed
   bool cross_checked = false; // the deep coherent answer was checked against cold starts
@@ -170,6 +172,7 @@ struct HapticStep {
 struct HapticPathRun {
   uint64_t path_seed = 0;
   std::vector<double> us, work, depth;  // colliding poses, unbounded
+  std::vector<double> cpu_us, budget_cpu_us;  // their CPU time, unbounded and bounded
   int cold_restarts = 0, not_free = 0;
   std::vector<double> budget_us;         // colliding poses, bounded
   int budget_stopped = 0, budget_not_free = 0;

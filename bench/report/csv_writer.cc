@@ -136,20 +136,21 @@ std::string WriteHapticPathsCsv(const std::vector<HapticPairResult>& runs,
                                 const std::string& dir) {
   const std::string name = "pd_haptic_paths.csv";
   std::ofstream f = Open(dir + "/" + name);
-  f << "pair,path,path_seed,colliding,median_us,p99_us,max_us,max_work,cold_restarts,not_free,"
-       "budget_median_us,budget_p99_us,budget_max_us,budget_stopped,budget_not_free\n";
+  f << "pair,path,path_seed,colliding,median_us,p99_us,max_us,max_cpu_us,max_work,cold_restarts,"
+       "not_free,budget_median_us,budget_p99_us,budget_max_us,budget_max_cpu_us,budget_stopped,"
+       "budget_not_free\n";
   auto row = [&](const std::string& pair, int path, const HapticPathRun& p) {
     const Summary t = Summarize(p.us), b = Summarize(p.budget_us);
     double max_work = 0.0;
     for (double w : p.work) max_work = std::max(max_work, w);
     f << pair << ',' << path << ',' << p.path_seed << ',' << t.n << ',' << Num(t.median) << ','
-      << Num(t.p99) << ',' << Num(t.max) << ',' << Num(max_work) << ',' << p.cold_restarts
-      << ',' << p.not_free << ',';
+      << Num(t.p99) << ',' << Num(t.max) << ',' << Num(Max(p.cpu_us)) << ',' << Num(max_work)
+      << ',' << p.cold_restarts << ',' << p.not_free << ',';
     if (b.n > 0)
-      f << Num(b.median) << ',' << Num(b.p99) << ',' << Num(b.max) << ',' << p.budget_stopped
-        << ',' << p.budget_not_free;
+      f << Num(b.median) << ',' << Num(b.p99) << ',' << Num(b.max) << ','
+        << Num(Max(p.budget_cpu_us)) << ',' << p.budget_stopped << ',' << p.budget_not_free;
     else
-      f << ",,,,";
+      f << ",,,,,";
     f << '\n';
   };
   for (const HapticPairResult& r : runs) {

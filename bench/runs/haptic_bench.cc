@@ -8,6 +8,7 @@
 #include "bench/runs/fcl_baselines.h"
 #include "bench/common/progress.h"
 #include "bench/runs/reference_runner.h"
+#include "haptics/loop/monotonic_clock.h"
 #include "bench/report/summaries.h"
 #include "pd_core/proximity/mesh_collision.h"
 #include "pd_core/proximity/model_pair.h"
@@ -20,20 +21,25 @@ namespace {
 // Solves `path` with one warm-started solver as the server's geometry thread
 // does: each answer first, then the list rebuild it deferred (PrepareNext)
 // until the next pose is due, a millisecond after the answer's query began.
-// on_answer(case, result, preparation) after each pose.
+// on_answer(case, result, preparation, cpu_us) after each pose, cpu_us the
+// query's CPU time (the thread's, read around Solve: its wall time
+// result.time_us less any time the thread was not running, preempted or its
+// vCPU descheduled; the read itself, a system call, adds ~1 us).
 template <typename OnAnswer>
 void SolveAlongPath(const BenchPair& pair, const HapticPath& path, const pd::Isometry3& X_WS,
                     const pd::PolyDepthOptions& options, OnAnswer&& on_answer) {
   pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, options);
   for (const Case& c : path.cases) {
+    const int64_t cpu0_ns = haptics::ThreadCpuNowNs();
     const pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS, /*coherent=*/true);
+    const double cpu_us = 1e-3 * static_cast<double>(haptics::ThreadCpuNowNs() - cpu0_ns);
     const auto t0 = std::chrono::steady_clock::now();
     const double left_us = kHapticPosePeriodUs - r.time_us;
     const pd::PolyDepthSolver::Preparation p = solver.PrepareNext([&] {
       return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0)
                  .count() >= left_us;
     });
-    on_answer(c, r, p);
+    on_answer(c, r, p, cpu_us);
   }
 }
 
@@ -62,9 +68,11 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
     Progress bar(tag + "PolyDepth (haptic)", static_cast<int>(path.cases.size()));
     bool previous_seen = false;
     SolveAlongPath(pair, path, X_WS, deferring, [&](const Case& c, const pd::PenetrationResult& r,
-                                                     const pd::PolyDepthSolver::Preparation& p) {
+                                                     const pd::PolyDepthSolver::Preparation& p,
+                                                     double cpu_us) {
       HapticStep s;
       s.c = c;
+      s.cpu_us = cpu_us;
       s.pd.in_collision = r.in_collision;
       s.pd.valid = r.valid;
       s.pd.depth = r.depth;
@@ -111,9 +119,11 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
     Progress bar(tag + "PolyDepth (haptic, bounded time)", static_cast<int>(out.steps.size()));
     size_t i = 0;
     SolveAlongPath(pair, path, X_WS, bounded, [&](const Case&, const pd::PenetrationResult& r,
-                                                   const pd::PolyDepthSolver::Preparation&) {
+                                                   const pd::PolyDepthSolver::Preparation&,
+                                                   double cpu_us) {
       HapticStep& s = out.steps[i++];
       s.has_budget = true;
+      s.budget_cpu_us = cpu_us;
       s.budget_in_collision = r.in_collision;
       s.budget_converged = r.converged;
       s.budget_free = r.valid;  // and verified below
@@ -137,11 +147,13 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       };
       bool previous_seen = false;
       SolveAlongPath(pair, more, X_WS, deferring, [&](const Case& c, const pd::PenetrationResult& r,
-                                                       const pd::PolyDepthSolver::Preparation&) {
+                                                       const pd::PolyDepthSolver::Preparation&,
+                                                       double cpu_us) {
         const bool seen = previous_seen;
         previous_seen = true;
         if (!r.in_collision) return;
         run.us.push_back(r.time_us);
+        run.cpu_us.push_back(cpu_us);
         run.work.push_back(static_cast<double>(r.box_tests + r.triangle_tests));
         run.depth.push_back(r.depth);
         run.cold_restarts += seen && r.warm_start_failed;
@@ -149,9 +161,11 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
       });
       if (st.haptic_budget_us > 0.0)
         SolveAlongPath(pair, more, X_WS, bounded, [&](const Case& c, const pd::PenetrationResult& r,
-                                                       const pd::PolyDepthSolver::Preparation&) {
+                                                       const pd::PolyDepthSolver::Preparation&,
+                                                       double cpu_us) {
           if (!r.in_collision) return;
           run.budget_us.push_back(r.time_us);
+          run.budget_cpu_us.push_back(cpu_us);
           run.budget_stopped += !r.converged;
           run.budget_not_free += !free_answer(c, r);
         });
@@ -306,6 +320,7 @@ HapticPathRun FirstHapticPathRun(const HapticPairResult& r) {
   for (const HapticStep& s : r.steps) {
     if (s.pd.in_collision) {
       p.us.push_back(s.pd.time_us);
+      p.cpu_us.push_back(s.cpu_us);
       p.work.push_back(s.box_tests + s.triangle_tests);
       p.depth.push_back(s.pd.depth);
       p.cold_restarts += s.cold_restart;
@@ -313,6 +328,7 @@ HapticPathRun FirstHapticPathRun(const HapticPairResult& r) {
     }
     if (s.has_budget && s.budget_in_collision) {
       p.budget_us.push_back(s.budget_time_us);
+      p.budget_cpu_us.push_back(s.budget_cpu_us);
       p.budget_stopped += !s.budget_converged;
       p.budget_not_free += !s.budget_free;
     }
@@ -323,6 +339,7 @@ HapticPathRun FirstHapticPathRun(const HapticPairResult& r) {
 HapticPathsSummary SummarizeHapticPaths(const HapticPairResult& r, double target_max_us) {
   HapticPathsSummary m;
   double max_all = 0.0, in_range = 0.0, p99 = 0.0, work = 0.0, budget_all = 0.0;
+  double cpu_all = 0.0, budget_cpu_all = 0.0;
   bool any_budget = false;
   auto add_path = [&](const HapticPathRun& p) {
     ++m.paths;
@@ -330,6 +347,9 @@ HapticPathsSummary SummarizeHapticPaths(const HapticPairResult& r, double target
     const Summary t = Summarize(p.us);
     m.max_us.push_back(t.max);
     m.paths_over_target += t.max > target_max_us;
+    const double cpu_max = Max(p.cpu_us);
+    cpu_all = std::max(cpu_all, cpu_max);
+    m.cpu_paths_over_target += cpu_max > target_max_us;
     max_all = std::max(max_all, t.max);
     p99 = std::max(p99, t.p99);
     for (size_t i = 0; i < p.us.size(); ++i)
@@ -345,15 +365,23 @@ HapticPathsSummary SummarizeHapticPaths(const HapticPairResult& r, double target
       m.budget_max_us.push_back(b);
       m.budget_paths_over_target += b > target_max_us;
       budget_all = std::max(budget_all, b);
+      const double b_cpu = Max(p.budget_cpu_us);
+      m.budget_cpu_max_us.push_back(b_cpu);
+      m.budget_cpu_paths_over_target += b_cpu > target_max_us;
+      budget_cpu_all = std::max(budget_cpu_all, b_cpu);
     }
   };
   add_path(FirstHapticPathRun(r));
   for (const HapticPathRun& p : r.more_paths) add_path(p);
   m.max_us_all = max_all;
+  m.cpu_max_us_all = cpu_all;
   m.in_range_max_us = in_range;
   m.worst_p99_us = p99;
   m.max_work = work;
-  if (any_budget) m.budget_max_us_all = budget_all;
+  if (any_budget) {
+    m.budget_max_us_all = budget_all;
+    m.budget_cpu_max_us_all = budget_cpu_all;
+  }
   return m;
 }
 

@@ -69,10 +69,17 @@ struct HapticPathsSummary {
   std::vector<double> max_us;     // per path, the first first
   double max_us_all = kNaN, in_range_max_us = kNaN, worst_p99_us = kNaN, max_work = kNaN;
   int paths_over_target = 0;      // paths whose max exceeds the warm target
+  // The same on the queries' CPU time (their wall time less any time the
+  // thread was not running: a stall of the machine, not of the solver).
+  double cpu_max_us_all = kNaN;
+  int cpu_paths_over_target = 0;
   int cold_restarts = 0, not_free = 0;
   std::vector<double> budget_max_us;  // per path
   double budget_max_us_all = kNaN;
   int budget_stopped = 0, budget_not_free = 0, budget_paths_over_target = 0;
+  std::vector<double> budget_cpu_max_us;  // per path, CPU time
+  double budget_cpu_max_us_all = kNaN;
+  int budget_cpu_paths_over_target = 0;
 };
 
 HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec,
