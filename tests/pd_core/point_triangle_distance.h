@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "pd_core/geometry/pose.h"
+#include "pd_core/mesh/mesh.h"
 
 namespace pd {
 namespace test {
@@ -25,6 +26,15 @@ inline double PointTriangleDistance(const Vector3& p, const Vector3& a, const Ve
                       (a - c).cross(f - c).dot(n) >= 0;
   if (inside) return std::abs(n.dot(p - a));
   return std::min({segment(p, a, b), segment(p, b, c), segment(p, c, a)});
+}
+
+// Distance from p to a mesh's surface over every triangle (no BVH).
+inline double BruteForceSurfaceDistance(const TriangleMesh& mesh, const Vector3& p) {
+  double best = 1e300;
+  for (const auto& t : mesh.triangles)
+    best = std::min(best, PointTriangleDistance(p, mesh.vertices[t[0]], mesh.vertices[t[1]],
+                                                mesh.vertices[t[2]]));
+  return best;
 }
 
 }  // namespace test

@@ -32,14 +32,6 @@ using Model = std::shared_ptr<const CollisionModel>;
 
 Isometry3 At(const Vector3& p) { return MakePose(p, 1, 0, 0, 0); }
 
-// Distance from p to the mesh's surface over every triangle (no BVH).
-double BruteForceDistance(const TriangleMesh& mesh, const Vector3& p) {
-  double best = 1e300;
-  for (const auto& t : mesh.triangles)
-    best = std::min(best, test::PointTriangleDistance(p, mesh.vertices[t[0]], mesh.vertices[t[1]],
-                                                      mesh.vertices[t[2]]));
-  return best;
-}
 
 TEST(PointClearance, AgreesWithBruteForceDistanceOnARealMesh) {
   const std::string path = std::string(PD_TEST_MESH_DIR) + "/cow.off";
@@ -53,7 +45,7 @@ TEST(PointClearance, AgreesWithBruteForceDistanceOnARealMesh) {
     // Points near the surface (inside and outside), where the BVH prunes least.
     const Vector3 p = cow->mesh().vertices[pick(rng)] +
                       0.02 * cow->radius() * Vector3(g(rng), g(rng), g(rng));
-    const double d = BruteForceDistance(cow->mesh(), p);
+    const double d = test::BruteForceSurfaceDistance(cow->mesh(), p);
     ProximityCounters counters;
     EXPECT_TRUE(SurfaceFartherThan(*cow, p, d * (1 - 1e-9), &counters)) << i << " d=" << d;
     EXPECT_FALSE(SurfaceFartherThan(*cow, p, d * (1 + 1e-9) + 1e-15)) << i << " d=" << d;

@@ -29,13 +29,6 @@ namespace {
 
 using Model = std::shared_ptr<const CollisionModel>;
 
-double BruteForceDistance(const TriangleMesh& mesh, const Vector3& p) {
-  double best = 1e300;
-  for (const auto& t : mesh.triangles)
-    best = std::min(best, test::PointTriangleDistance(p, mesh.vertices[t[0]], mesh.vertices[t[1]],
-                                                      mesh.vertices[t[2]]));
-  return best;
-}
 
 #define REQUIRE_MESH(file) \
   PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + (file), "run scripts/fetch_meshes.sh")
@@ -52,7 +45,7 @@ TEST(SurfaceDistance, AgreesWithBruteForceAndStopsAtItsCap) {
     // Near the surface and well inside or outside it.
     const double spread = (i % 3 == 0 ? 0.3 : 0.02) * cow->radius();
     const Vector3 p = cow->mesh().vertices[pick(rng)] + spread * Vector3(g(rng), g(rng), g(rng));
-    const double d = BruteForceDistance(cow->mesh(), p);
+    const double d = test::BruteForceSurfaceDistance(cow->mesh(), p);
     EXPECT_NEAR(SurfaceDistance(*cow, p, 1e300), d, 1e-12 * cow->radius()) << i;
     // A cap below the distance is returned as is; above it, the distance.
     EXPECT_EQ(SurfaceDistance(*cow, p, 0.5 * d), 0.5 * d) << i;
@@ -71,7 +64,8 @@ void ExpectInside(const CollisionModel& m, int max_spheres) {
     const InnerSphere& s = spheres[i];
     EXPECT_GT(s.radius, 0.0);
     EXPECT_NEAR(WindingNumber(m, s.p_MC), 1.0, 1e-6) << m.mesh().name << " sphere " << i;
-    EXPECT_LT(s.radius, BruteForceDistance(m.mesh(), s.p_MC)) << m.mesh().name << " sphere " << i;
+    EXPECT_LT(s.radius, test::BruteForceSurfaceDistance(m.mesh(), s.p_MC))
+        << m.mesh().name << " sphere " << i;
     for (size_t j = 0; j < i; ++j)
       EXPECT_GE((s.p_MC - spheres[j].p_MC).norm(), std::max(s.radius, spheres[j].radius));
     if (i > 0) {
