@@ -72,7 +72,6 @@ struct HapticPathsSummary {
   // The same on the queries' CPU time (their wall time less any time the
   // thread was not running: a stall of the machine, not of the solver).
   double cpu_max_us_all = kNaN;
-  int cpu_paths_over_target = 0;
   int cold_restarts = 0, not_free = 0;
   std::vector<double> budget_max_us;  // per path
   double budget_max_us_all = kNaN;
