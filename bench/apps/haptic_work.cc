@@ -20,6 +20,7 @@
 #include "bench/report/bench_results.h"
 #include "bench/report/summaries.h"
 #include "bench/runs/answer_free.h"
+#include "pd_core/geometry/fibonacci_sphere.h"
 #include "pd_core/polydepth/polydepth.h"
 #include "pd_core/proximity/mesh_collision.h"
 #include "pd_core/proximity/model_pair.h"
@@ -55,6 +56,9 @@ int main(int argc, char** argv) {
   bool check_free = false;
   app.add_flag("--check-free", check_free,
                "check every colliding answer free, and free kHapticFreeMargin x size beyond along itself (bench_pd's test); list those that are not");
+  int path_depth_every = 0;
+  app.add_option("--check-path-depth", path_depth_every,
+                 "check the path itself, every this many colliding poses: some translation no longer than twice the path's depth plus 2 mm (one of 256 directions) frees the tool (collision tests only, not the solver); list the poses where none does and exit 1");
   app.add_flag("--defer", options.defer_list_builds,
                "PolyDepthOptions::defer_list_builds: list builds run in PrepareNext after each answer (to the end); their work is reported apart");
   CLI11_PARSE(app, argc, argv);
@@ -69,9 +73,10 @@ int main(int argc, char** argv) {
     out.precision(17);
   }
   ModelCache cache(mesh_dir, 1);
-  std::printf("%-18s %6s %8s %8s %8s %8s %7s %8s %8s %6s  %s\n", "pair", "coll", "work_p50",
-              "work_p99", "work_max", "us_p50", "us_p99", "us_max", "builds", "cold",
-              "work share: collision/localisation/out-projection/list builds/other %");
+  if (path_depth_every == 0)
+    std::printf("%-18s %6s %8s %8s %8s %8s %7s %8s %8s %6s  %s\n", "pair", "coll", "work_p50",
+                "work_p99", "work_max", "us_p50", "us_p99", "us_max", "builds", "cold",
+                "work share: collision/localisation/out-projection/list builds/other %");
   for (const HapticPairSpec& spec : DefaultHapticPairs()) {
     if (!only.empty() && std::find(only.begin(), only.end(), spec.name) == only.end()) continue;
     std::string why;
@@ -95,6 +100,32 @@ int main(int argc, char** argv) {
     if (repeat > 0)
       std::fprintf(stderr, "%s: %d repeats, PolyDepth %.3f s\n", spec.name.c_str(), repeat,
                    repeat_us * 1e-6);
+    if (path_depth_every > 0) {
+      // The paths promise a tool kept about spec.depth_m inside the surface
+      // (haptic_paths.h): a pose deeper than this bound is one the path
+      // generator was not meant to make (before the overhang rule, knot1_bunny
+      // on seed 20240611 climbed 13 mm into the bunny's ear from below).
+      const double reach = 2.0 * spec.depth_m + 2e-3;
+      constexpr int kDirections = 256;
+      int checked = 0, too_deep = 0, colliding = 0;
+      for (const Case& c : path.cases) {
+        if (!c.colliding || colliding++ % path_depth_every != 0) continue;
+        ++checked;
+        const pd::ModelPair mp(*tool->model, *object->model, c.X_WP, X_WS);
+        bool freed = false;
+        for (int k = 0; k < kDirections && !freed; ++k)
+          freed = !pd::InCollision(mp, reach * pd::FibonacciDirection(k, kDirections));
+        if (!freed) {
+          ++too_deep;
+          std::fprintf(stderr, "%s %d: no translation of %.2f mm frees the tool\n",
+                       spec.name.c_str(), c.index, reach * 1e3);
+        }
+      }
+      std::printf("%s: path depth checked at %d colliding poses, %d deeper than %.2f mm\n",
+                  spec.name.c_str(), checked, too_deep, reach * 1e3);
+      if (too_deep > 0) return 1;
+      continue;
+    }
     pd::PolyDepthSolver solver(tool->model, object->model, options);
     std::vector<double> work, us, deferred;
     int builds = 0, cold = 0, index = 0, not_free = 0;

@@ -18,6 +18,7 @@ constexpr double kLift = 1e-3;             // m, lift-off height
 constexpr double kLiftDuration = 0.025;    // s
 constexpr double kMaxRadialSpeed = 0.2;    // m/s, how fast the hand follows the surface
 constexpr int kBisections = 18;
+constexpr double kGapScan = 0.5e-3;        // m, radial scan for the gap under an overhang
 
 Isometry3 ToolPose(const BenchPair& pair, const pd::Matrix3& R, const Vector3& c_W) {
   Isometry3 X = Isometry3::Identity();
@@ -62,14 +63,16 @@ HapticPath MakeHapticPath(const BenchPair& pair, const HapticPairSpec& spec, int
   const pd::Isometry3 X_WS = ScenePose(pair);
   const double r_max = pair.probe->model->radius() + pair.scene->model->radius();
 
-  double theta = 0.0;
+  double theta = 0.0, theta_before = 0.0;
+  double heading = 1.0;    // +1 or -1: which way along the great circle
+  bool held = false;       // the last pose was wedged under an overhang
   double s_touch = r_max;  // radial distance of first contact (refined per step)
   double s = -1.0;         // the tool's radial distance
   const double T = steps * kHapticDt;
   for (int i = 0; i < steps; ++i) {
     const double t = i * kHapticDt;
-    const Vector3 u = std::cos(theta) * e1 + std::sin(theta) * e2;
     const pd::Matrix3 R = Eigen::AngleAxisd(spec.turn_deg_s * M_PI / 180.0 * t, axis) * R0;
+    Vector3 u;
     auto collides = [&](double r) {
       const pd::ModelPair mp(*pair.probe->model, *pair.scene->model, ToolPose(pair, R, r * u),
                              X_WS);
@@ -77,15 +80,42 @@ HapticPath MakeHapticPath(const BenchPair& pair, const HapticPairSpec& spec, int
     };
     // Bracket first contact near the previous one, then bisect.
     const double step = 3e-3;
-    double hi = std::min(s_touch + step, r_max * 1.01), lo = s_touch - step;
-    while (collides(hi)) hi = std::min(hi + step, r_max * 1.01);
-    while (lo > 0 && !collides(lo)) hi = lo, lo -= step;
-    if (lo <= 0) lo = 0;  // no contact along this ray: keep the tool at the centre's side
-    for (int b = 0; b < kBisections; ++b) {
-      const double mid = 0.5 * (lo + hi);
-      (collides(mid) ? lo : hi) = mid;
+    double hi = 0.0, lo = 0.0;
+    bool wedged = false;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      u = std::cos(theta) * e1 + std::sin(theta) * e2;
+      hi = std::min(s_touch + step, r_max * 1.01), lo = s_touch - step;
+      int raised = 0;
+      while (collides(hi)) hi = std::min(hi + step, r_max * 1.01), ++raised;
+      if (raised < 2 || s < 0) break;
+      // The first contact along the ray rose more than 6 mm in one pose: an
+      // overhang (an ear, a handle) has come over the tool. The surface the
+      // hand follows is the one under the overhang, the top of the gap the
+      // tool slides in; a hand does not climb through the overhang from below.
+      hi = -1.0;
+      for (double r = s_touch + kGapScan; r <= s_touch + 2 * step; r += kGapScan)
+        if (!collides(r)) {
+          hi = r, lo = r - kGapScan;
+          break;
+        }
+      if (hi > 0) break;
+      // No gap within 6 mm: the overhang has closed on the tool. The hand
+      // turns back the way it came, holding its height meanwhile.
+      wedged = true;
+      if (attempt > 0 || held) break;
+      heading = -heading, theta = theta_before;
+      wedged = false;
     }
-    s_touch = hi;
+    held = wedged;
+    if (!wedged) {
+      while (lo > 0 && !collides(lo)) hi = lo, lo -= step;
+      if (lo <= 0) lo = 0;  // no contact along this ray: keep the tool at the centre's side
+      for (int b = 0; b < kBisections; ++b) {
+        const double mid = 0.5 * (lo + hi);
+        (collides(mid) ? lo : hi) = mid;
+      }
+      s_touch = hi;
+    }
     const bool lifting = (t >= T / 3 && t < T / 3 + kLiftDuration) ||
                          (t >= 2 * T / 3 && t < 2 * T / 3 + kLiftDuration);
     const double target = s_touch + (lifting ? kLift : -spec.depth_m);
@@ -101,7 +131,9 @@ HapticPath MakeHapticPath(const BenchPair& pair, const HapticPairSpec& spec, int
     // A hand that digs in more than 1 mm deeper than it means to (the
     // surface rose faster than it followed) stops sliding until it has
     // climbed back, as a user pushed back by the wall would.
-    if (s_touch - s <= spec.depth_m + 1e-3) theta += spec.speed_m_s * kHapticDt / std::max(s, 1e-3);
+    theta_before = theta;
+    if (s_touch - s <= spec.depth_m + 1e-3)
+      theta += heading * spec.speed_m_s * kHapticDt / std::max(s, 1e-3);
   }
   return out;
 }

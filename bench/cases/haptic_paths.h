@@ -6,8 +6,12 @@
 // rate about a fixed axis, and is kept a set depth inside the object's
 // surface (measured radially from first contact). The radial motion is rate
 // limited, as a hand's is, so where the surface juts out the tool digs in
-// deeper for a while and where it falls away the tool loses contact. Twice
-// per path the tool lifts off by 1 mm for 25 ms and comes back.
+// deeper for a while and where it falls away the tool loses contact. Where
+// the first contact along the ray jumps outward by more than 6 mm in one
+// pose, an overhang has come over the tool: the hand follows the surface
+// under it (the gap the tool slides in) or, with no gap within 6 mm, turns
+// back along the circle; it never climbs through the overhang from below.
+// Twice per path the tool lifts off by 1 mm for 25 ms and comes back.
 #include <string>
 #include <vector>
 
