@@ -2,13 +2,8 @@
 # path bench_pd reports (seeds 20240611 to 20240616, all pairs), at every
 # 20th colliding pose some translation no longer than twice the path's depth
 # plus 2 mm frees the tool. Collision tests only, independent of PolyDepth.
-if(NOT EXISTS "${MESH_DIR}/knot1.off" OR NOT EXISTS "${MESH_DIR}/bunny00.off")
-  if("$ENV{CI}" STREQUAL "true")
-    message(FATAL_ERROR "meshes missing under ${MESH_DIR} (run scripts/fetch_meshes.sh): a missing prerequisite fails in CI")
-  endif()
-  message("SKIPPED: meshes missing under ${MESH_DIR} (run scripts/fetch_meshes.sh)")
-  return()
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/require_meshes.cmake)
+require_meshes("${MESH_DIR}" knot1.off bunny00.off)
 foreach(seed RANGE 20240611 20240616)
   execute_process(COMMAND ${HAPTIC_WORK} --mesh-dir ${MESH_DIR} --seed ${seed}
                           --check-path-depth 20

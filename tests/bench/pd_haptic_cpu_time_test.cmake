@@ -1,12 +1,7 @@
 # Runs bench_pd's quick haptic scenario (one more path per pair, one
 # reference pose) and checks the CPU-time columns and row it reports.
-if(NOT EXISTS "${MESH_DIR}/knot1.off" OR NOT EXISTS "${MESH_DIR}/camel.off")
-  if("$ENV{CI}" STREQUAL "true")
-    message(FATAL_ERROR "meshes missing under ${MESH_DIR} (run scripts/fetch_meshes.sh): a missing prerequisite fails in CI")
-  endif()
-  message("SKIPPED: meshes missing under ${MESH_DIR} (run scripts/fetch_meshes.sh)")
-  return()
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/require_meshes.cmake)
+require_meshes("${MESH_DIR}" knot1.off camel.off)
 file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND ${BENCH} --quick --haptic-only --haptic-ref 1 --haptic-more-paths 1
                         --mesh-dir ${MESH_DIR} --out ${OUT}
