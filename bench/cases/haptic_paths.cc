@@ -100,11 +100,12 @@ HapticPath MakeHapticPath(const BenchPair& pair, const HapticPairSpec& spec, int
         }
       if (hi > 0) break;
       // No gap within 6 mm: the overhang has closed on the tool. The hand
-      // turns back the way it came, holding its height meanwhile.
-      wedged = true;
-      if (attempt > 0 || held) break;
+      // turns back the way it came (once), holding its height meanwhile.
+      if (attempt > 0 || held) {
+        wedged = true;
+        break;
+      }
       heading = -heading, theta = theta_before;
-      wedged = false;
     }
     held = wedged;
     if (!wedged) {

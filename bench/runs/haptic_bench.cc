@@ -23,8 +23,9 @@ namespace {
 // until the next pose is due, a millisecond after the answer's query began.
 // on_answer(case, result, preparation, cpu_us) after each pose, cpu_us the
 // query's CPU time (the thread's, read around Solve: its wall time
-// result.time_us less any time the thread was not running, preempted or its
-// vCPU descheduled; the read itself, a system call, adds ~1 us).
+// result.time_us less any time the thread was preempted; a vCPU the host
+// slows or steals from unreported is still charged; the read itself, a
+// system call, adds ~1 us).
 template <typename OnAnswer>
 void SolveAlongPath(const BenchPair& pair, const HapticPath& path, const pd::Isometry3& X_WS,
                     const pd::PolyDepthOptions& options, OnAnswer&& on_answer) {
