@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   pd::PolyDepthOptions options;
   int repeat = 0;
   app.add_option("--mesh-dir", mesh_dir, "directory of the .off meshes");
-  app.add_option("--dump", dump, "write 'pair index depth_m work iterations list_builds cross_checked' and the work by kind (collision localisation out_projection list_builds other) per pose to this file");
+  app.add_option("--dump", dump, "write 'pair index depth_m work iterations list_builds cross_checked' and the work by kind (collision localisation out_projection list_builds other), then time_us and converged, per pose to this file");
   app.add_option("--pairs", only, "only these haptic pairs");
   app.add_option("--steps", steps, "poses per path (1 ms apart)");
   app.add_option("--seed", seed, "path seed (bench_pd's --seed)");
@@ -159,7 +159,8 @@ int main(int argc, char** argv) {
         out << spec.name << ' ' << index << ' ' << r.depth << ' '
             << r.box_tests + r.triangle_tests << ' ' << r.iterations << ' ' << r.list_builds
             << ' ' << r.cross_checked << ' ' << r.work.collision << ' ' << r.work.localisation
-            << ' ' << r.work.out_projection << ' ' << r.work.list_builds << ' ' << r.work.other;
+            << ' ' << r.work.out_projection << ' ' << r.work.list_builds << ' ' << r.work.other
+            << ' ' << r.time_us << ' ' << r.converged;
       if (out && dump_poses) {
         const pd::Quaternion q(c.X_WP.linear());
         const pd::Vector3 p = c.X_WP.translation();
