@@ -351,8 +351,8 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
        << F(run.settings.haptic_budget_us, 0)
        << " us (the server's default `geometry_budget_ms`). A query that reaches the budget "
           "answers its best verified-free translation so far, marked not converged, and the next "
-          "query goes on from it; the search stops within a few tests of the budget and the "
-          "answer's own checks come after it (polydepth.h, max_time_us). Errors on the same "
+          "query goes on from it; the search stops at 85% of the budget and leaves the rest to "
+          "the answer's own checks (polydepth.h, max_time_us). Errors on the same "
           "reference poses as above:\n\n"
           "| Pair | PD median / p99 / max us | stopped by the budget | not free (+margin) | "
           "mean / max \\|err\\| |\n|---|---|---|---|---|\n";
