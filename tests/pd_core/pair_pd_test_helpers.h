@@ -1,8 +1,10 @@
 #pragma once
-// Helpers shared by the primitive / convex / dispatcher PD tests: poses,
-// random rotations, and the slow reference PD on tessellations of any
-// geometry (a half-space stands in as a large box whose top face is z = 0).
+// Helpers shared by the PD tests: poses (and poses from table rows), random
+// rotations, the reference settings bench_pd scores haptic paths with, and
+// the slow reference PD on tessellations of any geometry (a half-space
+// stands in as a large box whose top face is z = 0).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -19,6 +21,21 @@ inline Isometry3 Pose(const Vector3& p, const Quaternion& q = Quaternion::Identi
   X.linear() = q.normalized().toRotationMatrix();
   X.translation() = p;
   return X;
+}
+
+// A pose from a row of a recorded path: x y z (m), qw qx qy qz.
+inline Isometry3 PoseOfRow(const std::array<double, 7>& p) {
+  return Pose(Vector3(p[0], p[1], p[2]), Quaternion(p[3], p[4], p[5], p[6]));
+}
+
+// The reference settings of bench_pd's haptic scenario (128 directions, 4
+// refinement starts of 24 evaluations each).
+inline ReferencePdOptions BenchHapticReferenceOptions() {
+  ReferencePdOptions ro;
+  ro.num_directions = 128;
+  ro.num_refine_starts = 4;
+  ro.refine_iterations = 24;
+  return ro;
 }
 
 inline Quaternion RandomRotation(std::mt19937& rng) {

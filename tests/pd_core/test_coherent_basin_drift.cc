@@ -59,13 +59,8 @@ TEST_F(CoherentBasinDrift, FandiskOnElephantAnswerReturnsToTheShallowerEscape) {
   }
   EXPECT_FALSE(ReferenceInCollision(tool->mesh(), X_WP, true, object->mesh(), X_WS, true,
                                     r.translation_W));
-  // The bench's reference settings (128 directions, 4 refinements x 24).
-  ReferencePdOptions ro;
-  ro.num_directions = 128;
-  ro.num_refine_starts = 4;
-  ro.refine_iterations = 24;
-  const ReferencePdResult ref =
-      ReferencePenetrationDepth(tool->mesh(), X_WP, true, object->mesh(), X_WS, true, ro);
+  const ReferencePdResult ref = ReferencePenetrationDepth(
+      tool->mesh(), X_WP, true, object->mesh(), X_WS, true, test::BenchHapticReferenceOptions());
   ASSERT_TRUE(ref.in_collision);
   // The path deepens by a few percent here; the followed optimum grew 40%
   // above the shallowest answer before the fix.

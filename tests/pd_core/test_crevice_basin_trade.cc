@@ -14,6 +14,7 @@
 
 #include "pd_core/polydepth/polydepth.h"
 #include "pd_core/reference/reference_pd.h"
+#include "tests/pd_core/pair_pd_test_helpers.h"
 #include "tests/pd_core/scaled_mesh_model.h"
 #include "tests/prerequisites.h"
 
@@ -43,13 +44,6 @@ const std::vector<std::array<double, 7>> kCowIntoCrevice = {
     {0.015510610441471957, 0.032474548837718976, -0.039553542448815517, 0.6024632237138936, 0.11513020121983635, 0.5533232503137363, -0.56357473461962893},
 };
 
-Isometry3 PoseOf(const std::array<double, 7>& p) {
-  Isometry3 X_WP = Isometry3::Identity();
-  X_WP.linear() = Quaternion(p[3], p[4], p[5], p[6]).normalized().toRotationMatrix();
-  X_WP.translation() = Vector3(p[0], p[1], p[2]);
-  return X_WP;
-}
-
 // Before the check probed more directions per query while the answer grows
 // fast (polydepth.cc, kCheckPerQueryFast), the check started at pose 2267
 // found the other basin at 2272: at 2271 the answer was 2.96 mm against the
@@ -65,7 +59,7 @@ TEST(CreviceBasinTrade, CowIntoArmadilloCreviceFindsTheOtherBasinWhileGrowing) {
   PenetrationResult r;
   Isometry3 X_WP;
   for (size_t i = 0; i < kCowIntoCrevice.size(); ++i) {
-    X_WP = PoseOf(kCowIntoCrevice[i]);
+    X_WP = test::PoseOfRow(kCowIntoCrevice[i]);
     r = solver.Solve(X_WP, X_WS, /*coherent=*/true);
     ASSERT_TRUE(r.in_collision) << "pose " << i;
     ASSERT_TRUE(r.valid) << "pose " << i;
@@ -73,13 +67,8 @@ TEST(CreviceBasinTrade, CowIntoArmadilloCreviceFindsTheOtherBasinWhileGrowing) {
   }
   EXPECT_FALSE(ReferenceInCollision(tool->mesh(), X_WP, true, object->mesh(), X_WS, true,
                                     r.translation_W));
-  // The bench's reference settings (128 directions, 4 refinements x 24).
-  ReferencePdOptions ro;
-  ro.num_directions = 128;
-  ro.num_refine_starts = 4;
-  ro.refine_iterations = 24;
-  const ReferencePdResult ref =
-      ReferencePenetrationDepth(tool->mesh(), X_WP, true, object->mesh(), X_WS, true, ro);
+  const ReferencePdResult ref = ReferencePenetrationDepth(
+      tool->mesh(), X_WP, true, object->mesh(), X_WS, true, test::BenchHapticReferenceOptions());
   ASSERT_TRUE(ref.in_collision);
   RecordProperty("depth_um", static_cast<int>(r.depth * 1e6));
   RecordProperty("reference_um", static_cast<int>(ref.depth * 1e6));

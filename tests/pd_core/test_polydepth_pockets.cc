@@ -21,6 +21,7 @@
 #include "pd_core/proximity/model_pair.h"
 #include "pd_core/reference/reference_pd.h"
 #include "tests/prerequisites.h"
+#include "tests/pd_core/pair_pd_test_helpers.h"
 #include "tests/pd_core/scaled_mesh_model.h"
 
 namespace pd {
@@ -218,12 +219,7 @@ const std::vector<std::array<double, 7>> kFandiskBroadContact = {
     {0.020609334704295334, -0.03303656013644525, 0.038125845514137599, 0.79856926517511762, 0.25014756675848987, 0.54185910341072041, -0.078115527351543326}};
 
 // The pose of one row of the tables above.
-Isometry3 PoseOf(const std::array<double, 7>& p) {
-  Isometry3 X_WP = Isometry3::Identity();
-  X_WP.linear() = Quaternion(p[3], p[4], p[5], p[6]).normalized().toRotationMatrix();
-  X_WP.translation() = Vector3(p[0], p[1], p[2]);
-  return X_WP;
-}
+using test::PoseOfRow;
 
 void ExpectNoPocketsNoColdRestarts(const std::string& tool_file, double tool_scale,
                                    const std::string& object_file, double object_scale,
@@ -236,7 +232,7 @@ void ExpectNoPocketsNoColdRestarts(const std::string& tool_file, double tool_sca
   const Isometry3 X_WS = Isometry3::Identity();
   int pockets_escaped = 0;
   for (size_t i = 0; i < poses.size(); ++i) {
-    const Isometry3 X_WP = PoseOf(poses[i]);
+    const Isometry3 X_WP = PoseOfRow(poses[i]);
     const PenetrationResult r = solver.Solve(X_WP, X_WS, /*coherent=*/true);
     ASSERT_TRUE(r.in_collision) << "pose " << i;
     ASSERT_TRUE(r.valid) << "pose " << i;
@@ -291,7 +287,7 @@ TEST(WarmPathWork, CowOverArmadilloDegenerateContactLandsOnce) {
   PolyDepthSolver solver(tool, object, options);
   const Isometry3 X_WS = Isometry3::Identity();
   for (size_t i = 0; i < kCowOverArmadilloDegenerate.size(); ++i) {
-    const Isometry3 X_WP = PoseOf(kCowOverArmadilloDegenerate[i]);
+    const Isometry3 X_WP = PoseOfRow(kCowOverArmadilloDegenerate[i]);
     const PenetrationResult r = solver.Solve(X_WP, X_WS, /*coherent=*/true);
     solver.PrepareNext();
     ASSERT_TRUE(r.in_collision) << "pose " << i;
@@ -365,7 +361,7 @@ TEST(WarmPathWork, FandiskBroadContactKeepsListRebuildsBounded) {
   const Isometry3 X_WS = Isometry3::Identity();
   std::vector<int64_t> work;
   for (size_t i = 0; i < kFandiskBroadContact.size(); ++i) {
-    const Isometry3 X_WP = PoseOf(kFandiskBroadContact[i]);
+    const Isometry3 X_WP = PoseOfRow(kFandiskBroadContact[i]);
     const PenetrationResult r = solver.Solve(X_WP, X_WS, /*coherent=*/true);
     ASSERT_TRUE(r.in_collision) << "pose " << i;
     ASSERT_TRUE(r.valid) << "pose " << i;
@@ -419,7 +415,7 @@ TEST(WarmPathBudget, FandiskBroadContactBoundedQueriesEndNearTheirBudget) {
   std::vector<int64_t> past_budget;
   int stopped = 0, within_budget = 0;
   for (size_t i = 0; i < kFandiskBroadContact.size(); ++i) {
-    const Isometry3 X_WP = PoseOf(kFandiskBroadContact[i]);
+    const Isometry3 X_WP = PoseOfRow(kFandiskBroadContact[i]);
     const PenetrationResult r = solver.Solve(X_WP, X_WS, /*coherent=*/true);
     solver.PrepareNext();
     ASSERT_TRUE(r.in_collision) << "pose " << i;
