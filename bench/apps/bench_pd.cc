@@ -232,12 +232,17 @@ int main(int argc, char** argv) {
   }
   // Haptic pairs only: the other scenarios would have no pair to run.
   if (!wants_non_haptic_pair) haptic_only = true;
+  // A pair of either kind runs if --pairs names it, else if the run is full
+  // or the pair is in the quick set.
+  auto selected = [&](const std::string& name, bool in_quick) {
+    return !wanted.empty() ? wanted.count(name) > 0 : (!quick || in_quick);
+  };
 
   ModelCache cache(st.mesh_dir, quick ? 1 : 3);
   std::vector<HapticPairResult>& haptic = run.haptic;
   for (const HapticPairSpec& spec : DefaultHapticPairs()) {
     if (!wants("haptic")) continue;
-    if (!wanted.empty() ? !wanted.count(spec.name) : (quick && !spec.in_quick)) continue;
+    if (!selected(spec.name, spec.in_quick)) continue;
     std::string why;
     auto tool = cache.Get(spec.tool, &why, kHapticToolRadius);
     auto object = tool ? cache.Get(spec.object, &why, kHapticObjectRadius) : nullptr;
@@ -264,7 +269,7 @@ int main(int argc, char** argv) {
   // Models: the pairs', plus ~100k-triangle ones for the precomputation target.
   std::vector<BenchPair> pairs;
   for (const PairSpec& spec : DefaultPairs()) {
-    if (!wanted.empty() ? !wanted.count(spec.name) : (quick && !spec.in_quick)) continue;
+    if (!selected(spec.name, spec.in_quick)) continue;
     std::string why;
     auto probe = cache.Get(spec.probe, &why);
     auto scene = probe ? cache.Get(spec.scene, &why) : nullptr;

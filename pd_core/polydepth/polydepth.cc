@@ -373,10 +373,11 @@ struct PolyDepthSolver::Impl {
   double time_limit_us = 0.0;
   std::chrono::steady_clock::time_point t_start;
   bool stopped_early = false;
-  // A cold query's landings stopped at kColdLandingShare of the budget: not
+  // A cold query's landings stopped at their share of the budget: not
   // converged, but the search goes on (stopped_early would end it).
   bool landings_cut = false;
-  // True once the budget is spent and some verified answer exists.
+  // True once the search's share of the budget (kSearchShare) is spent and
+  // some verified answer exists.
   bool OutOfBudget() {
     if (best_origin == Initializer::kNone || !BudgetSpent(kSearchShare)) return false;
     return stopped_early = true;
@@ -975,8 +976,9 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     s.landed_norms.clear();
     for (size_t k = 0; k < s.starts.size(); ++k) {
       Start& st = s.starts[k];
-      // Bounded: the landings take at most kColdLandingShare of the budget
-      // once one has landed; the rest iterates the closest so far.
+      // Bounded: the landings take at most kColdLandingShare of the search's
+      // share of the budget once one has landed; the rest iterates the
+      // closest so far.
       if (!s.landed_norms.empty() && s.BudgetSpent(kColdLandingShare * kSearchShare)) {
         s.landings_cut = true;
         s.starts.resize(k);
