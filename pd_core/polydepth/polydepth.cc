@@ -1264,13 +1264,13 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     }
     if (suspect && InCollision(pair, s.best_q_S + thickness * n)) {
       ++result.pocket_escapes;
-      // A free q that is free a thickness further along itself too, after
-      // moving it back in along itself to where the probe touches (so the
-      // answer is again exactly where it leaves along itself).
-      auto escape_to = [&](Vector3 q) {
+      // A free q that is free a thickness further along itself too; with
+      // `move_back`, moved back in along itself to where the probe touches
+      // (so the answer is again exactly where it leaves along itself).
+      auto escape_to = [&](Vector3 q, bool move_back) {
         if (InCollision(pair, q) || InCollision(pair, q + thickness * q.normalized())) return false;
         bool touched = false;
-        const Vector3 e = OutProject(pair, q, Vector3::Zero(), margin, &touched);
+        const Vector3 e = move_back ? OutProject(pair, q, Vector3::Zero(), margin, &touched) : q;
         // (A budget-stopped out-projection may not move: e == q, tested above.)
         if (touched && e != q && !InCollision(pair, e + thickness * e.normalized())) q = e;
         s.best_q_S = q;
@@ -1288,15 +1288,19 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       double clearance = 0.0;
       const Vector3 d =
           s.ClearingDirection(s.pocket_constraints, options_.convergence_tol, &clearance);
+      // The shortest move off them (the first) is not moved back: on
+      // haptic_work's 30 paths all 189 escapes were, each gaining 2.0
+      // thicknesses (0.02-0.06% of the depth) for an out-projection and a
+      // collision test in a broad contact (1.5-2.6k tests).
       bool escaped = false;
-      for (double t = 2.0 * thickness / std::max(clearance, 1e-3);
-           !escaped && clearance > 0.0 && t < 16.0 * contact_distance; t *= 4.0)
-        escaped = escape_to(s.best_q_S + t * d);
+      const double t0 = 2.0 * thickness / std::max(clearance, 1e-3);
+      for (double t = t0; !escaped && clearance > 0.0 && t < 16.0 * contact_distance; t *= 4.0)
+        escaped = escape_to(s.best_q_S + t * d, t > t0);
       // Wedged (no direction clears them all) or still inside: through the
       // pocket's far wall along the answer's own direction, and back in to
       // where the probe touches it from outside.
       for (double t = 2.0 * thickness; !escaped && t < 16.0 * contact_distance; t *= 4.0)
-        escaped = escape_to(s.best_q_S + t * n);
+        escaped = escape_to(s.best_q_S + t * n, true);
     }
   }
   if (!valid && options_.num_sampling_directions > 0 && !s.stopped_early) {

@@ -464,10 +464,16 @@ TEST(PolyDepth, CoherentPathStaysValidAndNearReference) {
                                                                X_WS, true, u, 1e-9));
       }
       EXPECT_LE(r.depth, local_ref * 1.15) << "step " << i;
-      // Along its own direction the answer is exactly where the probe leaves.
+      // Along its own direction the answer is exactly where the probe leaves,
+      // but for an answer moved out of a thin free pocket (polydepth.cc, 3a):
+      // that one keeps the escape's 2 pocket thicknesses of room.
       const double along = DirectionalPenetration(P->mesh(), X_WP, true, S->mesh(), X_WS, true,
                                                   n, 1e-9);
-      EXPECT_NEAR(along, r.depth, 1e-6) << "step " << i;
+      const double escape_room =
+          r.pocket_escapes > 0
+              ? 2.05 * PolyDepthOptions{}.pocket_thickness * (P->radius() + S->radius())
+              : 0.0;
+      EXPECT_NEAR(along, r.depth - 0.5 * escape_room, 1e-6 + 0.5 * escape_room) << "step " << i;
       ++checked;
     }
   }
