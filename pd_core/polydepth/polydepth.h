@@ -138,15 +138,16 @@ struct PolyDepthOptions {
   // finish: its collision test (usually done by the search already), a
   // pocket escape if it needs one, and its localisation if the search had
   // none there (the query's first answer). On the 30 mesh-tool paths at
-  // 900 us: at most 891 us in one haptic_work run, 919 us in bench_pd's
-  // report at 0ef5ba2 (1049 us in the report before the 85%).
+  // 900 us: at most 891 us in one haptic_work run, 885 us in bench_pd's
+  // report at d6e8a78 (919 us at 0ef5ba2; 1049 us before the 85%).
   // A cold query's first answer is its first landing (a free configuration
   // on the contact space); its landings stop at half the search's share,
   // and the rest iterates the closest of them. On 24 random cases of each
   // of 12 real pairs (2k-10k triangles; the torus knot aside), bench_pd's
-  // report at 0ef5ba2: max_time_us 1000 and 3000 gave median times of
+  // report at d6e8a78: max_time_us 1000 and 3000 gave median times of
   // 0.85-0.88 and 2.1-2.6 ms and mean errors (averaged over the pairs) of
-  // 10.5 and 1.9% (before the 85%: 1.00-1.04 and 2.0-3.1 ms, 8.2 and 1.6%).
+  // 9.9 and 1.8% (10.5 and 1.9% at 0ef5ba2; before the 85%: 1.00-1.04 and
+  // 2.0-3.1 ms, 8.2 and 1.6%).
   int64_t max_work = 0;
   double max_time_us = 0.0;
   // Answer first, rebuild the list after: a warm query whose list no longer
