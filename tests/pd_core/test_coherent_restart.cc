@@ -7,24 +7,15 @@
 // at the last pose.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <memory>
 #include <string>
-#include <vector>
 
-#include "pd_core/polydepth/polydepth.h"
-#include "pd_core/reference/reference_pd.h"
-#include "tests/pd_core/pair_pd_test_helpers.h"
-#include "tests/pd_core/scaled_mesh_model.h"
+#include "tests/pd_core/cow_armadillo_path.h"
 #include "tests/prerequisites.h"
 
 namespace pd {
 namespace {
 
-using test::LoadScaled;
-
-// x y z (m), qw qx qy qz of the tool in W, one row per millisecond.
-const std::vector<std::array<double, 7>> kCowUnderOverhang = {
+const test::PathRows kCowUnderOverhang = {
     {0.010058602016221488, 0.034830219751384693, -0.042074100104868534, 0.53621155603546777, 0.081083729797571683, 0.53447783075967892, -0.64825615644015644},
     {0.010218181537396284, 0.034676254492558213, -0.041898928792210258, 0.53605156184357883, 0.081004431640926647, 0.53442658074512017, -0.64844061786155061},
     {0.010376918105273001, 0.034521942265017209, -0.041723298980298848, 0.53589153091129527, 0.08092512793232548, 0.53437529410154117, -0.64862503483952583},
@@ -56,28 +47,12 @@ const std::vector<std::array<double, 7>> kCowUnderOverhang = {
 TEST(CoherentRestart, CowUnderArmadilloOverhangStepsOffAlongTheClearingDirection) {
   for (const std::string f : {"cow.off", "armadillo.off"})
     PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
-  const auto tool = LoadScaled("cow.off", 0.047510300737962564);
-  const auto object = LoadScaled("armadillo.off", 0.00080634978724717667);
-  Isometry3 X_WS = Isometry3::Identity();
-  X_WS.translation() = -object->center();
-  PolyDepthSolver solver(tool, object);
   PenetrationResult r;
-  Isometry3 X_WP;
-  for (size_t i = 0; i < kCowUnderOverhang.size(); ++i) {
-    X_WP = test::PoseOfRow(kCowUnderOverhang[i]);
-    r = solver.Solve(X_WP, X_WS, /*coherent=*/true);
-    ASSERT_TRUE(r.in_collision) << "pose " << i;
-    ASSERT_TRUE(r.valid) << "pose " << i;
-    EXPECT_FALSE(i > 0 && r.warm_start_failed) << "pose " << i;
-  }
-  EXPECT_FALSE(ReferenceInCollision(tool->mesh(), X_WP, true, object->mesh(), X_WS, true,
-                                    r.translation_W));
-  const ReferencePdResult ref = ReferencePenetrationDepth(
-      tool->mesh(), X_WP, true, object->mesh(), X_WS, true, test::BenchHapticReferenceOptions());
-  ASSERT_TRUE(ref.in_collision);
+  double reference = 0.0;
+  ASSERT_TRUE(test::SolveCowArmadilloRows(kCowUnderOverhang, &r, &reference));
   RecordProperty("depth_um", static_cast<int>(r.depth * 1e6));
-  RecordProperty("reference_um", static_cast<int>(ref.depth * 1e6));
-  EXPECT_LE(r.depth, 1.05 * ref.depth) << "reference " << ref.depth;
+  RecordProperty("reference_um", static_cast<int>(reference * 1e6));
+  EXPECT_LE(r.depth, 1.05 * reference) << "reference " << reference;
 }
 
 }  // namespace

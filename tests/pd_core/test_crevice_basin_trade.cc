@@ -7,24 +7,15 @@
 // independent reference PD at the last pose.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <memory>
 #include <string>
-#include <vector>
 
-#include "pd_core/polydepth/polydepth.h"
-#include "pd_core/reference/reference_pd.h"
-#include "tests/pd_core/pair_pd_test_helpers.h"
-#include "tests/pd_core/scaled_mesh_model.h"
+#include "tests/pd_core/cow_armadillo_path.h"
 #include "tests/prerequisites.h"
 
 namespace pd {
 namespace {
 
-using test::LoadScaled;
-
-// x y z (m), qw qx qy qz of the tool in W, one row per millisecond.
-const std::vector<std::array<double, 7>> kCowIntoCrevice = {
+const test::PathRows kCowIntoCrevice = {
     {0.017555471615779004, 0.029878580974084527, -0.036565796428539202, 0.60474440652644035, 0.11635084710231912, 0.55387716664084952, -0.56032737522582343},
     {0.017436943758831105, 0.030046851731261117, -0.036760205391619401, 0.60460214304979354, 0.11627461632173962, 0.55384283148607005, -0.56053062381133256},
     {0.017317400293463875, 0.030214845447377014, -0.036954230104583194, 0.60445983813436943, 0.11619837757182354, 0.55380845837150183, -0.56073383397867882},
@@ -51,28 +42,12 @@ const std::vector<std::array<double, 7>> kCowIntoCrevice = {
 TEST(CreviceBasinTrade, CowIntoArmadilloCreviceFindsTheOtherBasinWhileGrowing) {
   for (const std::string f : {"cow.off", "armadillo.off"})
     PD_REQUIRE_FILE(std::string(PD_TEST_MESH_DIR) + "/" + f, "run scripts/fetch_meshes.sh");
-  const auto tool = LoadScaled("cow.off", 0.047510300737962564);
-  const auto object = LoadScaled("armadillo.off", 0.00080634978724717667);
-  Isometry3 X_WS = Isometry3::Identity();
-  X_WS.translation() = -object->center();
-  PolyDepthSolver solver(tool, object);
   PenetrationResult r;
-  Isometry3 X_WP;
-  for (size_t i = 0; i < kCowIntoCrevice.size(); ++i) {
-    X_WP = test::PoseOfRow(kCowIntoCrevice[i]);
-    r = solver.Solve(X_WP, X_WS, /*coherent=*/true);
-    ASSERT_TRUE(r.in_collision) << "pose " << i;
-    ASSERT_TRUE(r.valid) << "pose " << i;
-    EXPECT_FALSE(i > 0 && r.warm_start_failed) << "pose " << i;
-  }
-  EXPECT_FALSE(ReferenceInCollision(tool->mesh(), X_WP, true, object->mesh(), X_WS, true,
-                                    r.translation_W));
-  const ReferencePdResult ref = ReferencePenetrationDepth(
-      tool->mesh(), X_WP, true, object->mesh(), X_WS, true, test::BenchHapticReferenceOptions());
-  ASSERT_TRUE(ref.in_collision);
+  double reference = 0.0;
+  ASSERT_TRUE(test::SolveCowArmadilloRows(kCowIntoCrevice, &r, &reference));
   RecordProperty("depth_um", static_cast<int>(r.depth * 1e6));
-  RecordProperty("reference_um", static_cast<int>(ref.depth * 1e6));
-  EXPECT_LE(r.depth, 1.05 * ref.depth) << "reference " << ref.depth;
+  RecordProperty("reference_um", static_cast<int>(reference * 1e6));
+  EXPECT_LE(r.depth, 1.05 * reference) << "reference " << reference;
 }
 
 }  // namespace
