@@ -203,9 +203,9 @@ constexpr double kSearchShare = 0.85;
 // rarely; each such out-projection cost ~500-2000 tests in a broad contact.
 // At 30: p99 work -1 to -4% per pair, max per path down up to 25%
 // (fandisk_elephant 18.1k -> 13.5k tests), medians the same, 6 of 84k
-// answers shallower (by up to 2.9%), none deeper; at 10 and 20 fandisk's
-// max stays (its worst query's step is 20-30 distances), at 50 and 100
-// 20-48 answers change, some deeper.
+// answers shallower (by up to 2.9%), none deeper; at 10 fandisk's max
+// fell to 16.8k only and at 20 not at all (its worst query's step is 20-30
+// distances); at 50 and 100 20-48 answers change, some deeper.
 constexpr double kTargetFirstSteps = 30.0;
 // Room in pocket thicknesses, in the record made for a pocket escape (step
 // 3a), for the escape's move (2-8 thicknesses on haptic_work's paths).
