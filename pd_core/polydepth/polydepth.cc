@@ -207,6 +207,10 @@ constexpr double kSearchShare = 0.85;
 // fell to 16.8k only and at 20 not at all (its worst query's step is 20-30
 // distances); at 50 and 100 20-48 answers change, some deeper.
 constexpr double kTargetFirstSteps = 30.0;
+// A coherent restart's step-offs of 1 and 4 motions (along the previous
+// answer and with the motion undone) come first in its list of candidates;
+// the clearing direction is tried before the rest (Solve, step 1).
+constexpr int kNearStepOffs = 4;
 // Room in pocket thicknesses, in the record made for a pocket escape (step
 // 3a), for the escape's move (2-8 thicknesses on haptic_work's paths).
 constexpr double kEscapeRecordRoom = 16.0;
@@ -551,22 +555,15 @@ struct PolyDepthSolver::Impl {
     // A short step's target is usually free (the local model held the
     // contact it reaches): tested and localised there in one pass, it needs
     // no out-projection (see kTargetFirstSteps).
-    if ((q_new - q_c).norm() < kTargetFirstSteps * contact_distance) {
-      if (CollectContactConstraintsIfSurfacesFree(pair, q_new, contact_distance, &s.constraints,
-                                                  nullptr, &s.record) &&
-          !AnyComponentInside(pair, q_new)) {
-        s.constraints_q_S = q_new;
-        s.surfaces_free_q_S = q_new;
-        s.verified_q_S = q_new;
-        localised_here = true;
-        off_contact = true;
-        q_c = q_new;
-        norm_c = q_c.norm();
-        s.Offer(q_c, origin);
-        if (abandon && abandon->Update(norm_c)) break;
-        continue;
-      }
-      s.constraints_q_S = Vector3::Constant(1e300);  // the test stopped part way
+    if ((q_new - q_c).norm() < kTargetFirstSteps * contact_distance &&
+        s.LocaliseIfFree(pair, q_new, contact_distance, nullptr)) {
+      localised_here = true;
+      off_contact = true;
+      q_c = q_new;
+      norm_c = q_c.norm();
+      s.Offer(q_c, origin);
+      if (abandon && abandon->Update(norm_c)) break;
+      continue;
     }
     // Move toward q_new, landing on the first contact on the way.
     bool touched = false;
@@ -618,6 +615,22 @@ struct PolyDepthSolver::Impl {
     for (const ContactConstraint& c : cs) least = std::min(least, c.n_S.dot(d));
     *clearance = least;
     return least > 0.0 ? d : Vector3::Zero();
+  }
+
+  // Localises at q_S and tests it free in the same pass (the surfaces, then
+  // the models' containment). Free: true, `constraints` q_S's and q_S
+  // verified. Not: false, `constraints` no configuration's (the pass stopped
+  // at the first intersecting triangle pair, recorded in *witness if given).
+  bool LocaliseIfFree(const ModelPair& pair, const Vector3& q_S, double distance,
+                      CollisionWitness* witness) {
+    constraints_q_S = Vector3::Constant(1e300);
+    if (!CollectContactConstraintsIfSurfacesFree(pair, q_S, distance, &constraints, witness,
+                                                 &record) ||
+        AnyComponentInside(pair, q_S))
+      return false;
+    constraints_q_S = q_S;
+    verified_q_S = q_S;
+    return true;
   }
 
   void Offer(const Vector3& q_S, Initializer origin) {
@@ -858,13 +871,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     Vector3 q = q_pred;
     for (int k = 0; k < options_.max_iterations; ++k) {
       if (s.OutOfBudget()) break;
-      s.constraints_q_S = Vector3::Constant(1e300);  // about to be overwritten
-      if (!CollectContactConstraintsIfSurfacesFree(pair, q, contact_distance, &s.constraints,
-                                                   &s.witness, &s.record) ||
-          AnyComponentInside(pair, q))
-        break;
-      s.constraints_q_S = q;
-      s.verified_q_S = q;
+      if (!s.LocaliseIfFree(pair, q, contact_distance, &s.witness)) break;
       if (s.constraints.empty()) {
         // Free but off the contact space (the probe moved away from the
         // contact): land on it toward the query, then go on from there
@@ -937,7 +944,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         s.Iterate(pair, options_, size, q_c, Initializer::kMotionCoherence);
       return true;
     };
-    bool started = std::any_of(candidates.begin(), candidates.begin() + 4, try_from);
+    const auto far = candidates.begin() + kNearStepOffs;
+    bool started = std::any_of(candidates.begin(), far, try_from);
     // A feature leaning over the previous answer's direction blocks those
     // steps: step off along the direction that clears all its feature pairs,
     // 1 and 4 steps before the far step-offs above (16 and 64 steps), which
@@ -955,7 +963,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
               try_from(s.previous_q_S + back + (k * back_step / clearance) * d));
     };
     started = started || try_clearing(1.0) || try_clearing(4.0) ||
-              std::any_of(candidates.begin() + 4, candidates.end(), try_from) ||
+              std::any_of(far, candidates.end(), try_from) ||
               try_clearing(16.0);
     if (!started) try_clearing(64.0);
   }

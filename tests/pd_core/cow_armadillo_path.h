@@ -24,7 +24,8 @@ using PathRows = std::vector<std::array<double, 7>>;
 // The last answer of a warm solve along `rows` (from a cold start at the
 // first) and the reference PD at that pose. Every pose must collide with a
 // valid answer and none after the first may restart cold; the answer must
-// be free by the reference's own test. Returns false (with the failures
+// be free by the reference's own test. Both depths go to the test's
+// properties (depth_um, reference_um). Returns false (with the failures
 // recorded) where a pose breaks that.
 inline bool SolveCowArmadilloRows(const PathRows& rows, PenetrationResult* last,
                                   double* reference_depth) {
@@ -48,6 +49,8 @@ inline bool SolveCowArmadilloRows(const PathRows& rows, PenetrationResult* last,
       tool->mesh(), X_WP, true, object->mesh(), X_WS, true, BenchHapticReferenceOptions());
   EXPECT_TRUE(ref.in_collision);
   *reference_depth = ref.depth;
+  ::testing::Test::RecordProperty("depth_um", static_cast<int>(last->depth * 1e6));
+  ::testing::Test::RecordProperty("reference_um", static_cast<int>(ref.depth * 1e6));
   return ref.in_collision;
 }
 

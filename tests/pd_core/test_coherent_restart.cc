@@ -50,8 +50,6 @@ TEST(CoherentRestart, CowUnderArmadilloOverhangStepsOffAlongTheClearingDirection
   PenetrationResult r;
   double reference = 0.0;
   ASSERT_TRUE(test::SolveCowArmadilloRows(kCowUnderOverhang, &r, &reference));
-  RecordProperty("depth_um", static_cast<int>(r.depth * 1e6));
-  RecordProperty("reference_um", static_cast<int>(reference * 1e6));
   EXPECT_LE(r.depth, 1.05 * reference) << "reference " << reference;
 }
 
