@@ -58,9 +58,13 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
   const auto& topo_S = pair.S.topology();
   const bool closed_P = pair.P.closed(), closed_S = pair.S.closed();
 
+  // The triangle pair whose features are being collected (see add).
+  int tri_P = -1, tri_S = -1;
   auto add = [&](const Vector3& n, double h, const Vector3& p, FeaturePairKind kind, int f_P,
                  int f_S) {
     ContactConstraint c;
+    c.tri_P = tri_P;
+    c.tri_S = tri_S;
     c.n_S = n;
     c.c = n.dot(q_S) - h;  // so n·q - c = h at this configuration
     c.p_S = p;
@@ -92,6 +96,8 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
        if (recording) record->pairs.push_back({ip, is});
        return ForEachTrianglePair(pair.P.bvh(), pair.S.bvh(), ip, is, [&](int tp, int ts) {
         if (pair.counters) ++pair.counters->triangle_tests;
+        tri_P = tp;
+        tri_S = ts;
         const PlacedProbeTriangles::Triangle& probe = placed(tp);
         const Vector3* p = probe.p;
         Vector3 s[3];

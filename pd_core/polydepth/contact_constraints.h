@@ -24,6 +24,9 @@ struct ContactConstraint {
   // probe triangle, scene vertex; edge-edge: probe edge, scene edge (indices
   // into each model's topology().edges).
   int32_t feature_P = -1, feature_S = -1;
+  // The triangle pair (probe, scene) the features were found on: a witness
+  // to try first where the half-space is violated (mesh_collision.h).
+  int32_t tri_P = -1, tri_S = -1;
 };
 
 // Appends (after clearing) the constraints of all feature pairs closer than

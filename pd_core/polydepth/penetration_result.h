@@ -56,6 +56,11 @@ struct PenetrationResult {
   // the same side wins), or probed once back along the direction of the
   // shallowest answer since the last check, which it had turned from.
   bool cross_checked = false;
+  // Probes run along the answer's own contact normals 10-37 degrees from it
+  // (a coherent query with no check or turn probe), and whether one of them
+  // led to a shorter answer in another basin, which this query returns.
+  int basin_probes = 0;
+  bool basin_switched = false;
   // Times the answer was found inside a pocket of free space thinner than
   // PolyDepthOptions::pocket_thickness (it is moved out of the pocket when a
   // free configuration with room beyond is found within 16x the contact

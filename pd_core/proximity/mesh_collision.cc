@@ -33,23 +33,40 @@ int WithNeighbours(const CollisionModel& m, int t, int out[4]) {
 
 }  // namespace
 
+namespace {
+
+bool WitnessIntersects(const ModelPair& pair, PlacedProbeTriangles& placed,
+                       CollisionWitness* witness) {
+  if (witness == nullptr || witness->tp < 0 || witness->tp >= pair.P.mesh().num_triangles() ||
+      witness->ts < 0 || witness->ts >= pair.S.mesh().num_triangles())
+    return false;
+  // The contact slides a little between queries: the pair that
+  // intersected last time or one of its neighbour pairs usually still does.
+  int near_P[4], near_S[4];
+  const int np = WithNeighbours(pair.P, witness->tp, near_P);
+  const int ns = WithNeighbours(pair.S, witness->ts, near_S);
+  for (int i = 0; i < np; ++i)
+    for (int j = 0; j < ns; ++j)
+      if (TrianglePairIntersects(pair, placed, near_P[i], near_S[j])) {
+        *witness = {near_P[i], near_S[j]};
+        return true;
+      }
+  return false;
+}
+
+}  // namespace
+
+bool WitnessIntersects(const ModelPair& pair, const Vector3& offset_S,
+                       CollisionWitness* witness) {
+  WorkScope scope(pair.counters, QueryKind::kCollision);
+  PlacedProbeTriangles placed(pair, offset_S);
+  return WitnessIntersects(pair, placed, witness);
+}
+
 bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, CollisionWitness* witness) {
   WorkScope scope(pair.counters, QueryKind::kCollision);
   PlacedProbeTriangles placed(pair, offset_S);
-  if (witness && witness->tp >= 0 && witness->tp < pair.P.mesh().num_triangles() &&
-      witness->ts >= 0 && witness->ts < pair.S.mesh().num_triangles()) {
-    // The contact slides a little between queries: the pair that
-    // intersected last time or one of its neighbour pairs usually still does.
-    int near_P[4], near_S[4];
-    const int np = WithNeighbours(pair.P, witness->tp, near_P);
-    const int ns = WithNeighbours(pair.S, witness->ts, near_S);
-    for (int i = 0; i < np; ++i)
-      for (int j = 0; j < ns; ++j)
-        if (TrianglePairIntersects(pair, placed, near_P[i], near_S[j])) {
-          *witness = {near_P[i], near_S[j]};
-          return true;
-        }
-  }
+  if (WitnessIntersects(pair, placed, witness)) return true;
   bool hit = false;
   ProbeBoxMemo probe_box(pair.X_SP, offset_S);
   ForEachLeafPairNear(

@@ -12,6 +12,13 @@ struct CollisionWitness {
   int tp = -1, ts = -1;
 };
 
+// Whether the witness pair or one of its edge-neighbour pairs intersects with
+// the probe moved by offset_S (at most 16 triangle tests, no descent); on a
+// hit the witness moves to the intersecting pair. False says nothing about
+// the other pairs.
+bool WitnessIntersects(const ModelPair& pair, const Vector3& offset_S,
+                       CollisionWitness* witness);
+
 // Any probe triangle intersecting any scene triangle, probe moved by
 // offset_S. `witness` (optional) is tried first and updated on a hit.
 bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S,

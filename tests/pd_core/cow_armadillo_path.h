@@ -26,9 +26,11 @@ using PathRows = std::vector<std::array<double, 7>>;
 // valid answer and none after the first may restart cold; the answer must
 // be free by the reference's own test. Both depths go to the test's
 // properties (depth_um, reference_um). Returns false (with the failures
-// recorded) where a pose breaks that.
+// recorded) where a pose breaks that. With `all`, every pose's answer goes
+// there too.
 inline bool SolveCowArmadilloRows(const PathRows& rows, PenetrationResult* last,
-                                  double* reference_depth) {
+                                  double* reference_depth,
+                                  std::vector<PenetrationResult>* all = nullptr) {
   const auto tool = LoadScaled("cow.off", 0.047510300737962564);
   const auto object = LoadScaled("armadillo.off", 0.00080634978724717667);
   Isometry3 X_WS = Isometry3::Identity();
@@ -38,6 +40,7 @@ inline bool SolveCowArmadilloRows(const PathRows& rows, PenetrationResult* last,
   for (size_t i = 0; i < rows.size(); ++i) {
     X_WP = PoseOfRow(rows[i]);
     *last = solver.Solve(X_WP, X_WS, /*coherent=*/true);
+    if (all != nullptr) all->push_back(*last);
     EXPECT_TRUE(last->in_collision) << "pose " << i;
     EXPECT_TRUE(last->valid) << "pose " << i;
     EXPECT_FALSE(i > 0 && last->warm_start_failed) << "pose " << i;
