@@ -180,8 +180,10 @@ constexpr double kFlipCos = -0.5;
 // the poses followed another basin than the cold solve, 10-40 degrees off,
 // carrying 0.92 of the 0.93% mean error. A probe's landing is free 2.5% of
 // the time and then almost always shorter (80 of 82). Mean error 0.93 ->
-// 0.75% (1 probe: 0.80%, 3: 0.73%); the other haptic pairs at every 20th
-// pose 0.10-0.63 -> 0.06-0.32%. Normals 5-10 degrees off were free 0.4% of
+// 0.75% (1 probe: 0.80%, 3: 0.73%), median work +3-14%, p99 -2%, the same
+// max; the other haptic pairs, against a cold solve at every 20th colliding
+// pose of their 6 paths: 0.15-0.63 -> 0.10-0.30% (fandisk_elephant median
+// work +5%, the others +1-2%). Normals 5-10 degrees off were free 0.4% of
 // the time, 45-72 degrees never.
 constexpr int kBasinProbes = 2;
 constexpr double kBasinNearCos = 0.985;  // 10 degrees
@@ -1246,7 +1248,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       warm_found && budget_left && !check && s.anchor_depth > 0.0 &&
       s.best_norm > kAnchorProbeGrowth * std::max(s.anchor_depth, s.anchor_probe_depth) &&
       s.best_q_S.dot(s.anchor_n_S) < kAnchorProbeCos * s.best_norm;
-  // 2d. Before either: the answer's own contact may prove it within
+  // 2e (below): otherwise, probes along the answer's own contact normals.
+  // 2d. Before 2b or 2c: the answer's own contact may prove it within
   // kProvedSlack of the PD (depth_lower_bound.h).
   auto answer_proved = [&] {
     localise_at_best();
