@@ -177,8 +177,8 @@ constexpr double kFlipCos = -0.5;
 // by, and a check, started only by growth, sees it late or never (it skips
 // directions within 26 degrees of the answer). On cow_armadillo's 6 haptic
 // paths, with a cold solve at every colliding pose (15.5k poses): a fifth of
-// the poses followed another basin than the cold solve, 10-40 degrees off,
-// carrying 0.92 of the 0.93% mean error. A probe's landing is free 2.5% of
+// the poses followed another basin than the cold solve, more than 10
+// degrees off (most 10-40), carrying 0.87 of the 0.93% mean error. A probe's landing is free 2.5% of
 // the time and then almost always shorter (80 of 82). Mean error 0.93 ->
 // 0.75% (1 probe: 0.80%, 3: 0.73%), median work +3-14%, p99 -2%, the same
 // max; the other haptic pairs, against a cold solve at every 20th colliding
