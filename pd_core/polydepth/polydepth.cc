@@ -395,6 +395,10 @@ struct PolyDepthSolver::Impl {
   std::array<DirectionWitness, kBasinProbes> basin_witnesses, next_basin_witnesses;
   int num_basin_witnesses = 0, num_next_basin_witnesses = 0;
   CollisionWitness basin_witness;
+  // The coherent answer a basin probe replaced in this query, and in the
+  // previous one (when it did): step 1's last coherent start.
+  Vector3 replaced_q_S = Vector3::Zero(), previous_replaced_q_S = Vector3::Zero();
+  bool has_previous_replaced = false;
   // Into basin_directions: the distinct normals of `constraints` (the
   // answer's, unit answer direction n) in the probe window, then the
   // direction leaning toward the probe's motion v_S across n; returns how
@@ -806,6 +810,7 @@ void PolyDepthSolver::ResetWarmStart() {
   impl_->query_witness = CollisionWitness{};
   impl_->basin_witness = CollisionWitness{};
   impl_->num_basin_witnesses = 0;
+  impl_->has_previous_replaced = false;
   impl_->anchor_depth = 0.0;
   impl_->check_next = -1;
   impl_->has_previous = false;
@@ -1086,7 +1091,18 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     started = started || try_clearing(1.0) || try_clearing(4.0) ||
               std::any_of(far, candidates.end(), try_from) ||
               try_clearing(16.0);
-    if (!started) try_clearing(64.0);
+    started = started || try_clearing(64.0);
+    // The previous answer came from a neighbour-basin probe (step 2e) and
+    // that basin closed over it: go on from the answer it replaced
+    // (fandisk_elephant on haptic_work's seed 20240618, pose 2438: every
+    // step-off of the probe's answer collided and the query restarted cold,
+    // 80.6k tests, 4.1 ms).
+    for (double k : {1.0, 4.0, 16.0}) {
+      if (started || !s.has_previous_replaced) break;
+      const Vector3 n_r = s.previous_replaced_q_S.normalized();
+      started = try_from(s.previous_replaced_q_S + k * step * n_r) ||
+                try_from(s.previous_replaced_q_S + back + k * back_step * n_r);
+    }
   }
 
   // 1b. Coming from a free frame: put the probe back where it was then (a
@@ -1351,6 +1367,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         if (s.best_norm < warm_norm) break;
       }
       s.EndBasinProbes();
+      if (s.best_norm < warm_norm) s.replaced_q_S = warm_q;
     }
     if (s.best_q_S.dot(warm_q) <= kFlipCos * s.best_norm * warm_norm) {
       s.best_q_S = warm_q;
@@ -1489,6 +1506,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   // (or the first of a contact); see step 2.
   if (!valid) s.anchor_depth = 0.0;
   else if (s.anchor_depth <= 0.0 || s.best_norm < s.anchor_depth) s.SetAnchor(s.best_q_S);
+  s.has_previous_replaced = valid && result.basin_switched;
+  s.previous_replaced_q_S = s.replaced_q_S;
   if (valid) {
     s.has_previous = true;
     s.previous_q_S = s.best_q_S;
