@@ -395,9 +395,10 @@ struct PolyDepthSolver::Impl {
   std::array<DirectionWitness, kBasinProbes> basin_witnesses, next_basin_witnesses;
   int num_basin_witnesses = 0, num_next_basin_witnesses = 0;
   CollisionWitness basin_witness;
-  // The coherent answer a basin probe replaced in this query, and in the
-  // previous one (when it did): step 1's last coherent start.
-  Vector3 replaced_q_S = Vector3::Zero(), previous_replaced_q_S = Vector3::Zero();
+  // The coherent answer a basin probe replaced in the previous query (when
+  // it did): step 1's last coherent start. Written by step 2e, which runs
+  // after step 1 reads it.
+  Vector3 previous_replaced_q_S = Vector3::Zero();
   bool has_previous_replaced = false;
   // Into basin_directions: the distinct normals of `constraints` (the
   // answer's, unit answer direction n) in the probe window, then the
@@ -418,7 +419,6 @@ struct PolyDepthSolver::Impl {
       basin_directions[count++] = std::cos(kBasinMotionAngle) * n +
                                   std::sin(kBasinMotionAngle) * across.normalized();
     }
-    num_next_basin_witnesses = 0;
     return count;
   }
   // Whether the probe collides at q0 (along u), witnesses first (see
@@ -434,7 +434,8 @@ struct PolyDepthSolver::Impl {
     }
     bool hit = WitnessIntersects(pair, q0, &w);
     if (!hit) {
-      // The answer's constraints q0 violates most (c - n·q0 > 0).
+      // The triangle pairs of the answer's constraints q0 violates most
+      // (c - n·q0 > 0), then the query's own pair, then the descent.
       std::array<std::pair<double, int>, kBasinViolatedWitnesses> top;
       top.fill({0.0, -1});
       for (int i = 0; i < static_cast<int>(constraints.size()); ++i) {
@@ -444,15 +445,15 @@ struct PolyDepthSolver::Impl {
         for (; j > 0 && top[j - 1].first < v; --j) top[j] = top[j - 1];
         top[j] = {v, i};
       }
-      for (int j = 0; j < kBasinViolatedWitnesses && !hit && top[j].second >= 0; ++j) {
-        const ContactConstraint& k = constraints[top[j].second];
-        w = {k.tri_P, k.tri_S};
-        hit = WitnessIntersects(pair, q0, &w);
+      std::array<CollisionWitness, kBasinViolatedWitnesses> violated;
+      int num_violated = 0;
+      for (; num_violated < kBasinViolatedWitnesses && top[num_violated].second >= 0;
+           ++num_violated) {
+        const ContactConstraint& k = constraints[top[num_violated].second];
+        violated[num_violated] = {k.tri_P, k.tri_S};
       }
-    }
-    if (!hit) {
       w = query_witness;
-      hit = InCollision(pair, q0, &w);
+      hit = InCollision(pair, q0, &w, violated.data(), num_violated);
     }
     if (hit) {
       basin_witness = w;
@@ -463,6 +464,7 @@ struct PolyDepthSolver::Impl {
   void EndBasinProbes() {
     std::swap(basin_witnesses, next_basin_witnesses);
     num_basin_witnesses = num_next_basin_witnesses;
+    num_next_basin_witnesses = 0;
   }
   ProximityCounters counters;
   std::vector<ContactConstraint> previous_constraints;  // at the previous answer
@@ -1083,10 +1085,13 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     const Vector3 d = started ? Vector3::Zero()
                               : s.ClearingDirection(s.previous_constraints,
                                                     options_.convergence_tol, &clearance);
+    // From q along u by k steps of 1/per along u, then with the motion
+    // undone by k back steps.
+    auto step_off = [&](const Vector3& q, const Vector3& u, double k, double per) {
+      return try_from(q + (k * step / per) * u) || try_from(q + back + (k * back_step / per) * u);
+    };
     auto try_clearing = [&](double k) {
-      return clearance > 0.0 &&
-             (try_from(s.previous_q_S + (k * step / clearance) * d) ||
-              try_from(s.previous_q_S + back + (k * back_step / clearance) * d));
+      return clearance > 0.0 && step_off(s.previous_q_S, d, k, clearance);
     };
     started = started || try_clearing(1.0) || try_clearing(4.0) ||
               std::any_of(far, candidates.end(), try_from) ||
@@ -1099,9 +1104,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     // 80.6k tests, 4.1 ms).
     for (double k : {1.0, 4.0, 16.0}) {
       if (started || !s.has_previous_replaced) break;
-      const Vector3 n_r = s.previous_replaced_q_S.normalized();
-      started = try_from(s.previous_replaced_q_S + k * step * n_r) ||
-                try_from(s.previous_replaced_q_S + back + k * back_step * n_r);
+      started = step_off(s.previous_replaced_q_S, s.previous_replaced_q_S.normalized(), k, 1.0);
     }
   }
 
@@ -1305,7 +1308,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     } else {
       s.anchor_probe_depth = s.best_norm;
     }
-  } else {
+  } else if (budget_left) {
     // 2b, 2c or 2e: probes at kCheckRadius of the answer's length. A free
     // probe is out-projected toward the query and iterated if it lands
     // shorter; the following queries' coherent updates go on from there.
@@ -1353,7 +1356,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     } else if (turned) {
       probe(s.anchor_n_S);
       s.anchor_probe_depth = s.best_norm;
-    } else if (budget_left) {
+    } else {
       // 2e. Neighbour basins, every query between checks.
       localise_at_best();
       const Vector3 motion_S =
@@ -1367,7 +1370,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         if (s.best_norm < warm_norm) break;
       }
       s.EndBasinProbes();
-      if (s.best_norm < warm_norm) s.replaced_q_S = warm_q;
+      s.previous_replaced_q_S = warm_q;  // for the next query if this one switches
     }
     if (s.best_q_S.dot(warm_q) <= kFlipCos * s.best_norm * warm_norm) {
       s.best_q_S = warm_q;
@@ -1507,7 +1510,6 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   if (!valid) s.anchor_depth = 0.0;
   else if (s.anchor_depth <= 0.0 || s.best_norm < s.anchor_depth) s.SetAnchor(s.best_q_S);
   s.has_previous_replaced = valid && result.basin_switched;
-  s.previous_replaced_q_S = s.replaced_q_S;
   if (valid) {
     s.has_previous = true;
     s.previous_q_S = s.best_q_S;

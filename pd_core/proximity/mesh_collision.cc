@@ -31,10 +31,6 @@ int WithNeighbours(const CollisionModel& m, int t, int out[4]) {
   return n;
 }
 
-}  // namespace
-
-namespace {
-
 bool WitnessIntersects(const ModelPair& pair, PlacedProbeTriangles& placed,
                        CollisionWitness* witness) {
   if (witness == nullptr || witness->tp < 0 || witness->tp >= pair.P.mesh().num_triangles() ||
@@ -63,9 +59,17 @@ bool WitnessIntersects(const ModelPair& pair, const Vector3& offset_S,
   return WitnessIntersects(pair, placed, witness);
 }
 
-bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, CollisionWitness* witness) {
+bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, CollisionWitness* witness,
+                       const CollisionWitness* earlier, int num_earlier) {
   WorkScope scope(pair.counters, QueryKind::kCollision);
   PlacedProbeTriangles placed(pair, offset_S);
+  for (int i = 0; i < num_earlier; ++i) {
+    CollisionWitness w = earlier[i];
+    if (WitnessIntersects(pair, placed, &w)) {
+      *witness = w;
+      return true;
+    }
+  }
   if (WitnessIntersects(pair, placed, witness)) return true;
   bool hit = false;
   ProbeBoxMemo probe_box(pair.X_SP, offset_S);
@@ -84,10 +88,12 @@ bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S, Collision
   return hit;
 }
 
-bool InCollision(const ModelPair& pair, const Vector3& offset_S, CollisionWitness* witness) {
+bool InCollision(const ModelPair& pair, const Vector3& offset_S, CollisionWitness* witness,
+                 const CollisionWitness* earlier, int num_earlier) {
   // No surface crossing: disjoint, or a part of one wholly inside the other.
   WorkScope scope(pair.counters, QueryKind::kCollision);
-  return SurfacesIntersect(pair, offset_S, witness) || AnyComponentInside(pair, offset_S);
+  return SurfacesIntersect(pair, offset_S, witness, earlier, num_earlier) ||
+         AnyComponentInside(pair, offset_S);
 }
 
 bool InCollisionExpectingDepth(const ModelPair& pair, const Vector3& offset_S) {

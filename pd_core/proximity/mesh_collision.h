@@ -20,14 +20,19 @@ bool WitnessIntersects(const ModelPair& pair, const Vector3& offset_S,
                        CollisionWitness* witness);
 
 // Any probe triangle intersecting any scene triangle, probe moved by
-// offset_S. `witness` (optional) is tried first and updated on a hit.
+// offset_S. `witness` (optional) is tried first and updated on a hit. With
+// `earlier`, those num_earlier pairs are tried before it (each as a witness,
+// on the same placed probe triangles; `witness` must then be given): the
+// intersecting pair found, by them or after, goes to *witness.
 bool SurfacesIntersect(const ModelPair& pair, const Vector3& offset_S,
-                       CollisionWitness* witness = nullptr);
+                       CollisionWitness* witness = nullptr,
+                       const CollisionWitness* earlier = nullptr, int num_earlier = 0);
 
 // SurfacesIntersect, or a part of one mesh inside the other's solid, either
 // way, for closed meshes (pd_core/proximity/solid_containment.h).
 bool InCollision(const ModelPair& pair, const Vector3& offset_S,
-                 CollisionWitness* witness = nullptr);
+                 CollisionWitness* witness = nullptr, const CollisionWitness* earlier = nullptr,
+                 int num_earlier = 0);
 
 // InCollision for a configuration expected to lie deep inside (a cold
 // search's landing thresholds and inner probes): the models' inner spheres
