@@ -48,6 +48,8 @@ std::vector<std::pair<std::string, std::string>> SweptKnobDefaults() {
           {"convergence_tol", value(Label("convergence_tol", d.convergence_tol, "%.0e"))},
           {"num_maximally_clear", value(Label("num_maximally_clear", d.num_maximally_clear))},
           {"num_iterated_starts", value(Label("num_iterated_starts", d.num_iterated_starts))},
+          {"cold_start_gate", value(Label("cold_start_gate", d.cold_start_gate, "%.2g"))},
+          {"cold_shell_probes", value(Label("cold_shell_probes", d.cold_shell_probes))},
           {"num_random", value(Label("num_random", d.num_random))},
           {"cold_join", value(Label("cold_join", d.cold_join))},
           {"cold_screen_tol", value(Label("cold_screen_tol", d.cold_screen_tol, "%.0e"))},
@@ -77,6 +79,8 @@ std::vector<KnobConfig> SweepConfigs() {
   sweep("convergence_tol", &O::convergence_tol, Doubles{1e-3, 1e-4, 1e-5, 1e-6}, "%.0e");
   sweep("num_maximally_clear", &O::num_maximally_clear, Ints{8, 24, 48, 96, 128});
   sweep("num_iterated_starts", &O::num_iterated_starts, Ints{1, 2, 3, 4, 8});
+  sweep("cold_start_gate", &O::cold_start_gate, Doubles{0.0, 0.03, 0.1, 1e300}, "%.2g");
+  sweep("cold_shell_probes", &O::cold_shell_probes, Ints{0, 128, 256, 384});
   sweep("num_random", &O::num_random, Ints{0, 2, 4});
   // Speed for accuracy (off by default).
   sweep("cold_join", &O::cold_join, Doubles{0.0, 1e-2, 2e-2, 5e-2});

@@ -130,6 +130,16 @@ int main(int argc, char** argv) {
                  "cold: starts refined by iteration, closest landing first")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--start-gate", options.cold_start_gate,
+                 "cold: a start after the first is iterated only if it lands within this "
+                 "fraction above the best answer so far")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--shell-probes", options.cold_shell_probes,
+                 "cold: directions probed at 0.995 of the best answer's length for the "
+                 "other basins shallower than it (0: off)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--inner-probes", options.cold_inner_probes,
                  "cold: directions probed inside the best answer for shorter escapes "
                  "(0: off)")

@@ -86,11 +86,10 @@ class ColdRealPairs : public ::testing::TestWithParam<PairCase> {};
 
 // Each cold answer is verified free by the reference's own collision test,
 // also 2e-6 of the pair's size further along it, touches (collides 1e-5 of
-// the size back toward the query), and is no more than 40%
-// (mean over the pair's poses 10%) above the reference PD (an upper bound
-// itself: 128 directions). Issue 13 asks for max 10%, mean 0.5%: not met
-// yet; these bounds hold what the cold starts achieve today (worst pose
-// here +38%, rotor/blobby) so that a regression fails.
+// the size back toward the query), and is no more than 10% (issue 13's max;
+// mean over the pair's poses 2%) above the reference PD (an upper bound
+// itself: 128 directions). With 3 iterated starts and no shell the worst
+// pose here was +38% (rotor/blobby); with the shell +1.4% (bones/coupling).
 TEST_P(ColdRealPairs, AnswersAreFreeAndNearTheReference) {
   const PairCase c = GetParam();
   PD_REQUIRE_FILE(kMeshDir + "/" + c.probe, "run scripts/fetch_meshes.sh");
@@ -129,10 +128,10 @@ TEST_P(ColdRealPairs, AnswersAreFreeAndNearTheReference) {
     std::printf("[ case     ] %s/%s pose %zu: depth %.6f reference %.6f error %+.4f, %d "
                 "iterations, %d starts\n",
                 c.probe, c.scene, i, r.depth, ref.depth, err, r.iterations, r.starts);
-    EXPECT_LE(err, 0.40) << "pose " << i;
+    EXPECT_LE(err, 0.10) << "pose " << i;
     sum += std::max(err, 0.0);
   }
-  EXPECT_LE(sum / poses.size(), 0.10);
+  EXPECT_LE(sum / poses.size(), 0.02);
 }
 
 INSTANTIATE_TEST_SUITE_P(RealMeshes, ColdRealPairs, ::testing::ValuesIn(kPairs),
@@ -199,12 +198,13 @@ TEST(ColdPolyDepth, RealPairIsScaleInvariant) {
 }
 
 // The cold starts the join and screening knobs were measured with: 8
-// support-plane landings and 2 random ones, 4 of them iterated.
+// support-plane landings and 2 random ones, 4 of them iterated (ungated).
 PolyDepthOptions FourIteratedStarts() {
   PolyDepthOptions o;
   o.num_maximally_clear = 8;
   o.num_random = 2;
   o.num_iterated_starts = 4;
+  o.cold_start_gate = 1e300;
   return o;
 }
 
@@ -243,7 +243,8 @@ TEST(ColdPolyDepth, StartsJoiningAnEarlierStartsDescentSaveWorkNotDepth) {
 
 // A cold query lands the best num_maximally_clear of max(that, 48)
 // support-plane directions (96 by default) and the centroid start, every
-// one counted in `starts` (with the inner probes it out-projects), and
+// one counted in `starts` (with the shell and inner probes it
+// out-projects), and
 // iterates num_iterated_starts of them. (What more landings buy in accuracy
 // is bench_pd's to measure: PolyDepthOptions documents it.)
 TEST(ColdPolyDepth, EverySupportPlaneStartIsLandedAndCounted) {
@@ -252,6 +253,7 @@ TEST(ColdPolyDepth, EverySupportPlaneStartIsLandedAndCounted) {
   const ColdPoses c = LoadColdPoses("elephant.off", "cow.off", 5);
   PolyDepthOptions no_inner;
   no_inner.cold_inner_probes = 0;
+  no_inner.cold_shell_probes = 0;
   ASSERT_EQ(no_inner.num_maximally_clear, 96);
   ASSERT_EQ(no_inner.num_random, 0);
   PolyDepthOptions few = no_inner;
@@ -262,6 +264,50 @@ TEST(ColdPolyDepth, EverySupportPlaneStartIsLandedAndCounted) {
     ASSERT_TRUE(a.valid && b.valid) << "pose " << i;
     EXPECT_EQ(a.starts, 96 + 1) << "pose " << i;
     EXPECT_EQ(b.starts, 8 + 1) << "pose " << i;
+  }
+}
+
+// The shell (PolyDepthOptions::cold_shell_probes): after the iterated
+// starts, probes at 0.995 of the answer's length in 256 directions find the
+// other basins shallower than it. On these poses (found by scanning 108
+// random poses of 6 pairs) the iterated starts end in a basin 15-28% deeper
+// than the shell's answer; the shell's answer is no more than 1% above the
+// reference (which never sees the solver's answer), and free.
+TEST(ColdPolyDepth, ShellProbesFindTheShallowerBasinTheStartMisses) {
+  struct ShellCase {
+    const char* probe;
+    const char* scene;
+    uint64_t seed;
+    size_t pose;
+  };
+  const ShellCase cases[] = {{"rotor_small.off", "blobby.off", 2, 4},
+                             {"elephant.off", "cow.off", 1, 5},
+                             {"anchor_dense.off", "knot.off", 1, 3}};
+  for (const ShellCase& k : cases) {
+    PD_REQUIRE_FILE(kMeshDir + "/" + k.probe, "run scripts/fetch_meshes.sh");
+    PD_REQUIRE_FILE(kMeshDir + "/" + k.scene, "run scripts/fetch_meshes.sh");
+    const ColdPoses c = LoadColdPoses(k.probe, k.scene, k.seed);
+    ASSERT_GT(c.poses.size(), k.pose);
+    const Isometry3& X_WP = c.poses[k.pose];
+    PolyDepthOptions no_shell;
+    no_shell.cold_shell_probes = 0;
+    const PenetrationResult with = PolyDepthSolver(c.P, c.S).Solve(X_WP, c.X_WS);
+    const PenetrationResult without = PolyDepthSolver(c.P, c.S, no_shell).Solve(X_WP, c.X_WS);
+    ASSERT_TRUE(with.valid && without.valid) << k.probe;
+    ReferencePdOptions ro;
+    ro.num_directions = 128;
+    ro.refine_iterations = 24;
+    const ReferencePdResult ref = ReferencePenetrationDepth(c.P->mesh(), X_WP, true, c.S->mesh(),
+                                                            c.X_WS, true, ro);
+    std::printf("[ case     ] %s/%s seed %llu pose %zu: shell %.6f, without %.6f, reference "
+                "%.6f\n",
+                k.probe, k.scene, static_cast<unsigned long long>(k.seed), k.pose, with.depth,
+                without.depth, ref.depth);
+    EXPECT_GT(without.depth, 1.05 * ref.depth) << k.probe << ": the start alone is not off";
+    EXPECT_LE(with.depth, 1.01 * ref.depth) << k.probe;
+    EXPECT_FALSE(ReferenceInCollision(c.P->mesh(), X_WP, true, c.S->mesh(), c.X_WS, true,
+                                      with.translation_W))
+        << k.probe;
   }
 }
 

@@ -36,9 +36,12 @@ Isometry3 At(const Vector3& p_WA, const Quaternion& q_WA = Quaternion::Identity(
 Quaternion AboutX(double angle) { return Quaternion(Eigen::AngleAxisd(angle, Vector3::UnitX())); }
 
 // The most projection iterations one query may take: every start that is
-// iterated (two coherence attempts, the cold starts, the sampling fallback)
-// runs at most max_iterations.
-int IterationBound(const PolyDepthOptions& o) { return o.max_iterations * (o.num_iterated_starts + 3); }
+// iterated (two coherence attempts, the cold starts, the 4 free shell
+// probes, the 2 inner probes, the sampling fallback) runs at most
+// max_iterations, the cold polish one step.
+int IterationBound(const PolyDepthOptions& o) {
+  return o.max_iterations * (o.num_iterated_starts + 9) + 1;
+}
 
 double PairSize(const Model& P, const Model& S) { return P->radius() + S->radius(); }
 

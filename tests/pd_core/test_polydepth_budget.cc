@@ -117,11 +117,12 @@ TEST_F(BudgetTest, ABoundedColdQueryLandsFewerStartsAndIteratesTheClosest) {
 }
 
 // The landing the budget leaves is iterated on while budget remains, step
-// after step (not only one step): with one iterated start and no inner
-// probes, half an unbounded query's work leaves room for several.
+// after step (not only one step): with one iterated start and no shell or
+// inner probes, half an unbounded query's work leaves room for several.
 TEST_F(BudgetTest, ABoundedColdQueryIteratesItsClosestLandingOnWithTheRestOfTheBudget) {
   PolyDepthOptions one;
   one.num_iterated_starts = 1;
+  one.cold_shell_probes = 0;
   one.cold_inner_probes = 0;
   int stepped_on = 0, stopped = 0;
   for (const Isometry3& X_WP : CollidingPoses(6)) {
