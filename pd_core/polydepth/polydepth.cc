@@ -1174,6 +1174,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     // num_iterated-th closest so far: that start is not iterated, so its
     // exact landing point is not needed (the iterated ones are the same).
     s.landed_norms.clear();
+    double best_landing = 1e300;
     for (size_t k = 0; k < s.starts.size(); ++k) {
       Start& st = s.starts[k];
       // Bounded: the landings take at most kColdLandingShare of the search's
@@ -1188,14 +1189,20 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       ++result.starts;
       const double len = st.q_S.norm();
       double s_stop = -1.0;
-      if (len > 0.0 && num_iterated > 0 &&
-          static_cast<int>(s.landed_norms.size()) >= num_iterated) {
-        std::nth_element(s.landed_norms.begin(), s.landed_norms.begin() + (num_iterated - 1),
-                         s.landed_norms.end());
+      if (len > 0.0 && num_iterated > 0 && !s.landed_norms.empty()) {
+        // A landing farther than the num_iterated-th closest so far, or
+        // than cold_start_gate above the closest (it lands above the best
+        // answer by more than the gate: not iterated), needs no exact
+        // landing point.
+        double threshold = (1.0 + options_.cold_start_gate) * best_landing;
+        if (static_cast<int>(s.landed_norms.size()) >= num_iterated) {
+          std::nth_element(s.landed_norms.begin(), s.landed_norms.begin() + (num_iterated - 1),
+                           s.landed_norms.end());
+          threshold = std::min(threshold, s.landed_norms[num_iterated - 1]);
+        }
         // Landing at s lies (1 - s + margin / len) |q_S| from the query
         // (OutProject); contacts before s_stop land farther than the
         // threshold (by a relative 1e-9, against round-off).
-        const double threshold = s.landed_norms[num_iterated - 1];
         s_stop = 1.0 + margin / len - threshold / len - 1e-9;
       }
       // Colliding where it would land at the threshold, it lands farther:
@@ -1219,6 +1226,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       st.contact_norm = st.contact_q_S.norm();
       if (!exact) continue;
       s.landed_norms.push_back(st.contact_norm);
+      best_landing = std::min(best_landing, st.contact_norm);
       // A landing is free (the CCD's): the answer so far, should the
       // budget end the query before any iteration.
       s.Offer(st.contact_q_S, st.origin);
