@@ -269,10 +269,11 @@ TEST(ColdPolyDepth, EverySupportPlaneStartIsLandedAndCounted) {
 
 // The shell (PolyDepthOptions::cold_shell_probes): after the iterated
 // starts, probes at 0.995 of the answer's length in 256 directions find the
-// other basins shallower than it. On these poses (found by scanning 108
-// random poses of 6 pairs) the iterated starts end in a basin 15-28% deeper
-// than the shell's answer; the shell's answer is no more than 1% above the
-// reference (which never sees the solver's answer), and free.
+// other basins shallower than it. On these poses (found by scanning 216
+// random poses of 6 pairs) the iterated starts end in a basin 9-11% deeper
+// than the shell's answer, which is free (the reference's own collision
+// test) and no more than 1% above the reference (which never sees the
+// solver's answer; here it is the reference that is deeper, by 5-12%).
 TEST(ColdPolyDepth, ShellProbesFindTheShallowerBasinTheStartMisses) {
   struct ShellCase {
     const char* probe;
@@ -280,9 +281,9 @@ TEST(ColdPolyDepth, ShellProbesFindTheShallowerBasinTheStartMisses) {
     uint64_t seed;
     size_t pose;
   };
-  const ShellCase cases[] = {{"rotor_small.off", "blobby.off", 2, 4},
-                             {"elephant.off", "cow.off", 1, 5},
-                             {"anchor_dense.off", "knot.off", 1, 3}};
+  const ShellCase cases[] = {{"cow.off", "cow.off", 5, 4},
+                             {"cow.off", "cow.off", 1, 4},
+                             {"dino.off", "femur.off", 2, 3}};
   for (const ShellCase& k : cases) {
     PD_REQUIRE_FILE(kMeshDir + "/" + k.probe, "run scripts/fetch_meshes.sh");
     PD_REQUIRE_FILE(kMeshDir + "/" + k.scene, "run scripts/fetch_meshes.sh");
@@ -303,7 +304,7 @@ TEST(ColdPolyDepth, ShellProbesFindTheShallowerBasinTheStartMisses) {
                 "%.6f\n",
                 k.probe, k.scene, static_cast<unsigned long long>(k.seed), k.pose, with.depth,
                 without.depth, ref.depth);
-    EXPECT_GT(without.depth, 1.05 * ref.depth) << k.probe << ": the start alone is not off";
+    EXPECT_GT(without.depth, 1.05 * with.depth) << k.probe << ": the shell found nothing";
     EXPECT_LE(with.depth, 1.01 * ref.depth) << k.probe;
     EXPECT_FALSE(ReferenceInCollision(c.P->mesh(), X_WP, true, c.S->mesh(), c.X_WS, true,
                                       with.translation_W))
