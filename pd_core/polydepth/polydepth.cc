@@ -153,10 +153,11 @@ constexpr double kProvedSlack = 1.0 / 0.95 - 1.0;
 // support-plane directions.
 constexpr int kMinSupportDirections = 48;
 // PolyDepthOptions::cold_shell_probes: probed at this fraction of the best
-// answer's length (0.995 against 0.98 and 0.99: 0.57 against 0.71 and
-// 0.65% mean error on bench_pd's random scenario, the same time; 0.998 the
-// same as 0.995), and the first this many free ones iterated (2, 4 or 8:
-// the same answers; a free shell probe is rare, 0.1 per query).
+// answer's length (0.995 against 0.98 and 0.99, with one iterated start:
+// 0.57 against 0.71 and 0.65% mean |error| on bench_pd's random scenario,
+// the same time; 0.998 the same as 0.995), and the first this many free
+// ones iterated (2, 4 or 8: the same answers; a free shell probe is rare,
+// 0.1 per query).
 constexpr double kShellRadius = 0.995;
 constexpr int kShellIterated = 4;
 // Directions of PolyDepthOptions::cold_deep_probes (96 against 48 or 192:
