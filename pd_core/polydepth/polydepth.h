@@ -96,9 +96,10 @@ struct PolyDepthOptions {
   // direction (the ones found lay 0-180 degrees from it). Measured with one
   // iterated start on the report's seed: mean |error| 0.57% (0.89% with 3
   // starts and no shell); at 0.98 of the length (a basin at least 2%
-  // shallower) 0.71%; 192 directions 0.80%, 384 0.59% at +16% time (with
-  // the gate at 0.1, 192 directions: 0.41 / 0.29% mean excess on the two
-  // seeds, against 256's 0.26 / 0.36%: direction sampling noise). 0 = off.
+  // shallower) 0.71%; at 0.99 0.65%, and there 192 directions 0.80%, 384
+  // 0.59% at +16% time (with the gate at 0.1, 192 directions at 0.995:
+  // 0.41 / 0.29% mean excess on the two seeds, against 256's 0.26 /
+  // 0.36%: direction sampling noise). 0 = off.
   int cold_shell_probes = 256;
   // The iterated cold starts stop once a step gains less than this (fraction
   // of size; at or below convergence_tol: off); the best of them then goes
