@@ -111,6 +111,9 @@ struct RunSettings {
   int fcl_max_contacts = 0;
   int haptic_steps = 0;     // poses per haptic path (1 ms apart)
   int haptic_ref = 0;       // reference PDs per haptic path
+  // The haptic reference's directions and evaluations per refinement start
+  // (its own: the haptic pairs' meshes are larger).
+  int haptic_ref_directions = 0, haptic_ref_refine_iterations = 0;
   // The haptic paths solved again with PolyDepthOptions::max_time_us at this
   // (us; 0: not run): the geometry thread's bounded-time mode.
   double haptic_budget_us = 0.0;

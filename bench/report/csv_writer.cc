@@ -106,7 +106,8 @@ std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std:
        "pd_rel_error,cross_checked,prepare_us,prepare_box_tests,prepare_lists_completed,"
        "prepare_paused,inquery_in_collision,inquery_time_us,inquery_list_builds,"
        "inquery_list_build_us," << kWorkColumns
-    << ",budget_converged,budget_free_beyond,budget_depth_m,budget_time_us,budget_rel_error\n";
+    << ",budget_converged,budget_free_beyond,budget_depth_m,budget_time_us,budget_rel_error,"
+       "ref_directions\n";
   for (const HapticPairResult& r : runs)
     for (const HapticStep& s : r.steps) {
       f << r.spec.name << ',' << s.c.index << ',' << s.c.colliding << ',' << s.pd.in_collision
@@ -127,7 +128,7 @@ std::string WriteHapticCsv(const std::vector<HapticPairResult>& runs, const std:
           << (s.has_ref ? Num(RelativeError(s.budget_depth, s.ref.depth)) : "");
       else
         f << ",,,,,";
-      f << '\n';
+      f << ',' << (s.has_ref ? std::to_string(s.ref.directions) : "") << '\n';
     }
   return name;
 }

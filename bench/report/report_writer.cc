@@ -317,7 +317,10 @@ void HapticSection(const BenchRun& run, std::ostream& md) {
         "direction when the answer has turned from it while growing. An answer counts as free "
         "only if the tool is also free "
      << G(kHapticFreeMargin) << " x pair size further out along it. Reference: "
-     << run.settings.haptic_ref << " colliding poses per path, spread evenly, no hint. Max by "
+     << run.settings.haptic_ref << " colliding poses per path, spread evenly, no hint ("
+     << run.settings.haptic_ref_directions << " directions, " << run.settings.ref_refine_starts
+     << " refinement starts x " << run.settings.haptic_ref_refine_iterations
+     << " evaluations). Max by "
         "depth: the colliding poses whose answer is within "
      << F(kHapticTargetMaxDepth * 1e3, 0)
      << " mm (the depth range the warm targets are set for) and the deeper ones, where a path "

@@ -205,7 +205,7 @@ HapticPairResult RunHapticPair(const BenchPair& pair, const HapticPairSpec& spec
   }
   {
     Progress bar(tag + "reference PD (haptic)", static_cast<int>(jobs.size()));
-    RunReference(pair, jobs, st, &bar);
+    RunReference(pair, jobs, st, &bar, /*haptic=*/true);
   }
   return out;
 }

@@ -61,10 +61,10 @@ void RunReference(const BenchPair& pair, const std::vector<RefJob>& jobs,
 }
 
 void RunReference(const BenchPair& pair, const std::vector<RefJob>& jobs, const RunSettings& st,
-                  Progress* progress) {
+                  Progress* progress, bool haptic) {
   pd::ReferencePdOptions options;
-  options.num_directions = st.ref_directions;
-  options.refine_iterations = st.ref_refine_iterations;
+  options.num_directions = haptic ? st.haptic_ref_directions : st.ref_directions;
+  options.refine_iterations = haptic ? st.haptic_ref_refine_iterations : st.ref_refine_iterations;
   options.num_refine_starts = st.ref_refine_starts;
   RunReference(pair, jobs, options, st.ref_threads, progress);
 }

@@ -18,9 +18,10 @@ struct RefJob {
 void RunReference(const BenchPair& pair, const std::vector<RefJob>& jobs,
                   const pd::ReferencePdOptions& options, int threads, Progress* progress);
 
-// The same with the run's reference settings (directions, refinement, threads).
+// The same with the run's reference settings (directions, refinement, threads):
+// the haptic scenario's directions and refinement if `haptic`.
 void RunReference(const BenchPair& pair, const std::vector<RefJob>& jobs, const RunSettings& st,
-                  Progress* progress);
+                  Progress* progress, bool haptic = false);
 
 // `k` indices spread evenly over [0, n) (all of them if k >= n).
 std::vector<int> SpreadIndices(int n, int k);

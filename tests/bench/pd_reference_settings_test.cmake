@@ -1,0 +1,87 @@
+# bench_pd's --ref-directions sets the reference's directions in the random,
+# path and shallow scenarios; the haptic scenario's reference keeps its own
+# (the settings its warm-PD targets were measured at), and the reports say
+# which each used.
+cmake_policy(SET CMP0007 NEW)  # keep the CSV's empty fields as list elements
+include(${CMAKE_CURRENT_LIST_DIR}/require_meshes.cmake)
+require_meshes("${MESH_DIR}" knot1.off camel.off)
+file(REMOVE_RECURSE "${OUT}")
+execute_process(COMMAND ${BENCH} --quick --scenarios random --pairs torus_knot_3k --random-cases 2
+                        --ref-random 1 --no-sweep --ref-directions 300 --mesh-dir ${MESH_DIR}
+                        --out ${OUT}/random
+                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "bench_pd --scenarios random exited ${rc}: ${err}")
+endif()
+file(STRINGS "${OUT}/random/pd_cases.csv" lines)
+list(GET lines 0 header)
+string(REPLACE "," ";" columns "${header}")
+list(FIND columns "ref_directions" i_dirs)
+list(FIND columns "ref_depth_m" i_depth)
+if(i_dirs LESS 0 OR i_depth LESS 0)
+  message(FATAL_ERROR "pd_cases.csv lacks ref_directions / ref_depth_m: ${header}")
+endif()
+set(refs 0)
+list(LENGTH lines n)
+math(EXPR last "${n} - 1")
+foreach(k RANGE 1 ${last})
+  list(GET lines ${k} line)
+  string(REPLACE "," ";" f "${line}")
+  list(GET f ${i_depth} depth)
+  if(depth STREQUAL "")
+    continue()
+  endif()
+  math(EXPR refs "${refs} + 1")
+  list(GET f ${i_dirs} dirs)
+  # The sphere's 300 directions, then at most 4 refinement starts x 32
+  # evaluations (quick).
+  if(dirs LESS 300 OR dirs GREATER 428)
+    message(FATAL_ERROR "--ref-directions 300: the reference evaluated ${dirs} directions: ${line}")
+  endif()
+endforeach()
+if(NOT refs EQUAL 1)
+  message(FATAL_ERROR "expected one reference case, got ${refs}: ${lines}")
+endif()
+file(READ "${OUT}/random/pd_speed_error.md" md)
+if(NOT md MATCHES "300 Fibonacci directions, 4 refinement starts x 32 evaluations")
+  message(FATAL_ERROR "pd_speed_error.md does not state the reference's settings (300 x 32)")
+endif()
+
+execute_process(COMMAND ${BENCH} --quick --haptic-ref 1 --haptic-more-paths 0 --haptic-budget-us 0
+                        --pairs knot1_camel --ref-directions 300 --mesh-dir ${MESH_DIR}
+                        --out ${OUT}/haptic
+                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "bench_pd --pairs knot1_camel exited ${rc}: ${err}")
+endif()
+# The directions the haptic reference evaluated: its own 96, then at most
+# 4 x 32 refinement evaluations; with the 300 it would evaluate 300 at least.
+file(STRINGS "${OUT}/haptic/pd_haptic.csv" lines)
+list(GET lines 0 header)
+string(REPLACE "," ";" columns "${header}")
+list(FIND columns "ref_directions" i_dirs)
+if(i_dirs LESS 0)
+  message(FATAL_ERROR "pd_haptic.csv lacks ref_directions: ${header}")
+endif()
+set(refs 0)
+list(LENGTH lines n)
+math(EXPR last "${n} - 1")
+foreach(k RANGE 1 ${last})
+  list(GET lines ${k} line)
+  string(REPLACE "," ";" f "${line}")
+  list(GET f ${i_dirs} dirs)
+  if(dirs STREQUAL "")
+    continue()
+  endif()
+  math(EXPR refs "${refs} + 1")
+  if(dirs LESS 96 OR dirs GREATER 224)
+    message(FATAL_ERROR "the haptic reference took --ref-directions 300 (${dirs} evaluated): ${line}")
+  endif()
+endforeach()
+if(NOT refs EQUAL 1)
+  message(FATAL_ERROR "expected one haptic reference pose, got ${refs}")
+endif()
+file(READ "${OUT}/haptic/pd_haptic.md" md)
+if(NOT md MATCHES "no hint \\(96 directions, 4 refinement starts x 32 evaluations\\)")
+  message(FATAL_ERROR "pd_haptic.md: the haptic reference did not keep its own settings (96 x 32)")
+endif()
