@@ -20,7 +20,7 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'D', 'M', 'O', 'D', 'E', 'L', '\0'};
 // Bump when CollisionModel, Bvh, MeshTopology or this layout changes.
-constexpr uint32_t kFormatVersion = 4;  // 2: component_vertices_; 3: surface-area-split BVH; 4: inner_spheres_
+constexpr uint32_t kFormatVersion = 5;  // 2: component_vertices_; 3: surface-area-split BVH; 4: inner_spheres_; 5: BvhNode bounds
 constexpr size_t kHeaderBytes = sizeof(kMagic) + 4 + 8 + 4;  // magic, version, payload size, crc
 
 uint32_t Crc32(const void* data, size_t bytes) {
@@ -169,6 +169,7 @@ struct ModelCacheAccess {
     if (!InBounds(*m, problem)) return nullptr;
     // Traversal stacks are sized by the depth: never trust the file's.
     m->bvh_.depth_ = Bvh::MeasureDepth(m->bvh_.nodes_);
+    Bvh::DeriveBounds(&m->bvh_.nodes_);
     return m;
   }
 

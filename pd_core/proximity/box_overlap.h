@@ -18,11 +18,22 @@ struct ProbeBoxInS {
   Matrix3 R_SA;
   Vector3 p_SA;
   const Vector3* half_A;
+  Vector3 aabb_half_S;  // half extents of the box's axis-aligned bounds in S (m)
+  double radius;        // bounding-sphere radius (m)
 };
 
 inline ProbeBoxInS ProbeBox(const BvhNode& node, const RelativePose& X_SP,
                             const Vector3& offset_S) {
-  return {X_SP.R_SP * node.R_MB, X_SP * node.center_M + offset_S, &node.half_B};
+  const Matrix3 R_SA = X_SP.R_SP * node.R_MB;
+  return {R_SA, X_SP * node.center_M + offset_S, &node.half_B, R_SA.cwiseAbs() * node.half_B,
+          node.radius};
+}
+
+// Axis-aligned bounds in S first (three comparisons, no rotation product):
+// true if they prove the boxes more than `distance` apart.
+inline bool AabbsApart(const ProbeBoxInS& a, const BvhNode& b, double distance) {
+  const Vector3 c = (a.p_SA - b.center_M).cwiseAbs();
+  return (c.array() > (a.aabb_half_S + b.aabb_half_M).array() + distance).any();
 }
 
 // ProbeBox of the node last asked for, kept for the next call: a descent
@@ -171,7 +182,7 @@ inline double SeparatingAxisGap(const ProbeBoxInS& a, const BvhNode& b, Vector3*
 
 // The bounding spheres' gap (m; a lower bound on the boxes' distance).
 inline double SphereGap(const ProbeBoxInS& a, const BvhNode& b) {
-  return (a.p_SA - b.center_M).norm() - a.half_A->norm() - b.half_B.norm();
+  return (a.p_SA - b.center_M).norm() - a.radius - b.radius;
 }
 
 // True if the boxes may come within `distance` of each other. The bounding
@@ -181,8 +192,9 @@ inline double SphereGap(const ProbeBoxInS& a, const BvhNode& b) {
 template <BoxAxes kAxes = BoxAxes::kFacesEdges>
 inline bool BoxesWithin(const ProbeBoxInS& a, const BvhNode& b, double distance,
                         double* gap_bound = nullptr) {
-  const double reach = a.half_A->norm() + b.half_B.norm() + distance;
+  const double reach = a.radius + b.radius + distance;
   if ((a.p_SA - b.center_M).squaredNorm() > reach * reach) return false;
+  if (AabbsApart(a, b, distance)) return false;
   const double gap = AxisGap<kAxes>(a, b, distance);
   if (gap_bound != nullptr) *gap_bound = gap;
   return gap <= distance;
@@ -200,20 +212,21 @@ inline bool NodesWithin(const ProbeBoxInS& a, const BvhNode& node_a, const BvhNo
 }
 
 // The times s in [lo, hi] within [s_min, s_max] at which box A moved by
-// s * sweep_S may overlap box b: the bounding spheres and, on each of the six
-// face axes, the projections must overlap at the same time (the nine
-// edge-edge axes would narrow the interval but cost more in the CCD than
-// they save). Returns false if that interval is empty. With `grow` (m) > 0:
-// the times at which the boxes may come within grow of each other (the same
-// tests as BoxesWithin<BoxAxes::kFaces> at each time).
+// s * sweep_S may overlap box b: the bounding spheres, the axis-aligned
+// bounds in S and, on each of the six face axes, the projections must
+// overlap at the same time (the nine edge-edge axes would narrow the
+// interval but cost more in the CCD than they save). Returns false if that
+// interval is empty. With `grow` (m) > 0: the times at which the boxes may
+// come within grow of each other (the same tests as
+// BoxesWithin<BoxAxes::kFaces> at each time).
 inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
                                     const Vector3& sweep_S, double s_max, double* s_lo,
                                     double* s_hi, double grow = 0.0, double s_min = 0.0) {
   double lo = s_min, hi = s_max;
+  const Vector3 c = a.p_SA - b.center_M;
   {
     // Bounding spheres first: |c + s sweep| <= reach, a quadratic in s.
-    const double reach = a.half_A->norm() + b.half_B.norm() + grow;
-    const Vector3 c = a.p_SA - b.center_M;
+    const double reach = a.radius + b.radius + grow;
     const double qa = sweep_S.squaredNorm(), qb = c.dot(sweep_S),
                  qc = c.squaredNorm() - reach * reach;
     if (qa < 1e-300) {
@@ -227,8 +240,6 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
       if (lo > hi) return false;
     }
   }
-  internal::BoxPair p(a, b);
-  const Vector3 d = b.R_MB.transpose() * sweep_S;  // sweep in B
   auto clip = [&](double center, double rate, double radius) {
     // |center + s * rate| <= radius
     if (std::abs(rate) < 1e-300) return std::abs(center) <= radius;
@@ -239,6 +250,13 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
     hi = std::min(hi, t1);
     return lo <= hi;
   };
+  // The axis-aligned bounds in S first (no rotation product: they settle
+  // most rejected pairs), then the boxes' face axes.
+  const Vector3 r = a.aabb_half_S + b.aabb_half_M;
+  for (int i = 0; i < 3; ++i)
+    if (!clip(c[i], sweep_S[i], r[i] + grow)) return false;
+  internal::BoxPair p(a, b);
+  const Vector3 d = b.R_MB.transpose() * sweep_S;  // sweep in B
   for (int i = 0; i < 3; ++i) {
     p.Row(i);
     if (!clip(p.t[i], d[i], p.hb[i] + p.absR.row(i).dot(p.ha) + grow)) return false;

@@ -28,6 +28,7 @@ Bvh::Bvh(const TriangleMesh& mesh) {
   nodes_.shrink_to_fit();
   order_.resize(n);
   for (int i = 0; i < n; ++i) order_[i] = tris[i].t;
+  DeriveBounds(&nodes_);
 }
 
 int Bvh::MeasureDepth(const std::vector<BvhNode>& nodes) {
@@ -51,7 +52,15 @@ Bvh Bvh::FromNodes(std::vector<BvhNode> nodes, std::vector<int32_t> order) {
   bvh.nodes_ = std::move(nodes);
   bvh.order_ = std::move(order);
   bvh.depth_ = MeasureDepth(bvh.nodes_);
+  DeriveBounds(&bvh.nodes_);
   return bvh;
+}
+
+void Bvh::DeriveBounds(std::vector<BvhNode>* nodes) {
+  for (BvhNode& n : *nodes) {
+    n.aabb_half_M = n.R_MB.cwiseAbs() * n.half_B;
+    n.radius = n.half_B.norm();
+  }
 }
 
 namespace {

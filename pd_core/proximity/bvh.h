@@ -18,6 +18,11 @@ struct BvhNode {
   Matrix3 R_MB;      // box axes B (columns) in the mesh frame M
   Vector3 center_M;  // box centre in M (m)
   Vector3 half_B;    // half extents along the box axes (m)
+  // Derived from the three above (Bvh::DeriveBounds): the half extents of
+  // the box's axis-aligned bounds in M and its bounding-sphere radius (m),
+  // the cheap first tests of a pair (box_overlap.h).
+  Vector3 aabb_half_M = Vector3::Zero();
+  double radius = 0.0;
   int32_t right_or_first = 0;  // internal: right child; leaf: first slot in order()
   int32_t count = 0;           // 0 for internal nodes, else triangles in the leaf
   bool is_leaf() const { return count > 0; }
@@ -41,6 +46,8 @@ class Bvh {
   // links must satisfy what Bvh builds: left child = index + 1, right child
   // beyond it, leaves indexing `order`.
   static Bvh FromNodes(std::vector<BvhNode> nodes, std::vector<int32_t> order);
+  // Sets every node's aabb_half_M and radius from its box.
+  static void DeriveBounds(std::vector<BvhNode>* nodes);
   bool empty() const { return nodes_.empty(); }
   size_t MemoryBytes() const {
     return nodes_.capacity() * sizeof(BvhNode) + order_.capacity() * sizeof(int32_t);

@@ -4,7 +4,8 @@
 // surface area, not equal counts); the depth stays within about three times
 // the balanced depth on input that makes every such split lopsided; and a
 // node takes the mesh frame's axes where their box is smaller than the
-// principal-axes box.
+// principal-axes box; every node's axis-aligned bounds and radius are the
+// tightest that hold its box's corners.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -121,6 +122,39 @@ TEST(Bvh, ANodeTakesTheMeshAxesWhereTheirBoxIsSmaller) {
   EXPECT_NEAR(half[1], 0.5, 1e-12);
   EXPECT_NEAR(half[2], 0.5, 1e-12);
   EXPECT_TRUE(BoxHoldsItsTriangles(bvh, mesh, 0, 1e-12));
+}
+
+// The derived bounds (the first, cheapest tests of a node pair): per mesh
+// axis the largest reach of the box's 8 corners, and the largest corner
+// distance, from the box centre.
+TEST(Bvh, EveryNodesAxisAlignedBoundsAndRadiusAreTheTightestHoldingItsCorners) {
+  TriangleMesh mesh;
+  for (int i = 0; i < 200; ++i) {
+    const double a = 0.61 * i, r = 0.2 + 0.005 * i;
+    const int base = mesh.num_vertices();
+    // Triangles tilted out of every axis plane: rotated boxes.
+    mesh.vertices.push_back(Vector3(r * std::cos(a), r * std::sin(a), 0.3 * std::sin(0.7 * i)));
+    mesh.vertices.push_back(mesh.vertices[base] + Vector3(0.03, 0.01 * (i % 3), 0.02));
+    mesh.vertices.push_back(mesh.vertices[base] + Vector3(-0.01, 0.025, 0.01 * (i % 4)));
+    mesh.triangles.push_back(Eigen::Vector3i(base, base + 1, base + 2));
+  }
+  const Bvh bvh(mesh);
+  int rotated = 0;
+  for (const BvhNode& node : bvh.nodes()) {
+    Vector3 reach = Vector3::Zero();
+    double radius = 0.0;
+    for (int c = 0; c < 8; ++c) {
+      const Vector3 corner_B((c & 1 ? 1 : -1) * node.half_B.x(), (c & 2 ? 1 : -1) * node.half_B.y(),
+                             (c & 4 ? 1 : -1) * node.half_B.z());
+      const Vector3 d_M = node.R_MB * corner_B;
+      reach = reach.cwiseMax(d_M.cwiseAbs());
+      radius = std::max(radius, d_M.norm());
+    }
+    EXPECT_LT((node.aabb_half_M - reach).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_NEAR(node.radius, radius, 1e-12);
+    rotated += !node.R_MB.isIdentity(1e-9);
+  }
+  EXPECT_GT(rotated, 0);  // the check covers boxes not aligned with M
 }
 
 }  // namespace
