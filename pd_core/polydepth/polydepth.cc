@@ -680,9 +680,10 @@ struct PolyDepthSolver::Impl {
                              origin == Initializer::kMotionCoherence &&
                                  opt.creep_join_iterations > 0 && it >= opt.creep_join_iterations);
     // Aim strictly inside free space: an exactly touching target is
-    // ambiguous under round-off, a target `margin` clear is not.
+    // ambiguous under round-off, a target `margin` clear is not. (The local
+    // model only: `constraints` stay as localised, so a later model built
+    // from them, e.g. the cold polish's, adds the margin once.)
     for (ContactConstraint& c : s.joined) c.c += margin;
-    for (ContactConstraint& c : s.constraints) c.c += margin;
     const Vector3 q_new = MinNormPoint(s.joined, tol, &s.qp).q;
     if (q_new.norm() >= norm_c - tol) break;  // q_c is locally optimal
     // A short step's target is usually free (the local model held the

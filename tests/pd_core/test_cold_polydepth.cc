@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "pd_core/geometry/make_shapes.h"
 #include "pd_core/mesh/load_mesh.h"
 #include "pd_core/polydepth/cold_starts.h"
 #include "pd_core/polydepth/polydepth.h"
@@ -356,6 +357,35 @@ TEST(ColdPolyDepth, ScreenedStartsSaveWorkNotDepth) {
 
 // The early stop extrapolates a geometric descent: a start heading for a
 // limit above the best answer stops, one heading below it goes on.
+// A cold answer is backed off the contact by exactly one separation margin,
+// also where the final polish (the best answer's local model solved once
+// more) sets it: a needle lying into a flat face, whose PD is how far its
+// lowest edge went in. (The polish once reused constraints an iteration had
+// already moved by the margin: two margins.)
+TEST(ColdPolyDepth, AnAnswerIsOneSeparationMarginClearOfTheContact) {
+  const Model needle = CollisionModel::Build(MakeCylinder(0.002, 0.4, 8));
+  const Model box = CollisionModel::Build(MakeBox(Vector3(1, 1, 1)));
+  Isometry3 X_WP = Isometry3::Identity();
+  X_WP.linear() = Eigen::AngleAxisd(M_PI / 2, Vector3::UnitY()).toRotationMatrix();
+  double lowest = 1e300;
+  for (const Vector3& v : needle->mesh().vertices) lowest = std::min(lowest, (X_WP.linear() * v).z());
+  for (int iterated : {1, 3}) {
+    PolyDepthOptions options;
+    options.num_iterated_starts = iterated;
+    PolyDepthSolver solver(needle, box, options);
+    const double margin = options.separation_margin * (needle->radius() + box->radius());
+    for (double in : {0.0005, 0.001, 0.0013}) {
+      X_WP.translation() = Vector3(0, 0.2, 1.0 - lowest - in);
+      const PenetrationResult r = solver.Solve(X_WP, Isometry3::Identity());
+      ASSERT_TRUE(r.in_collision && r.valid);
+      EXPECT_GT(r.normal_W.z(), 0.999);
+      EXPECT_NEAR(r.depth - in, margin, 0.25 * margin)
+          << iterated << " iterated starts, " << in << " m in: " << (r.depth - in) / margin
+          << " margins clear";
+    }
+  }
+}
+
 TEST(StartAbandon, StopsOnlyStartsThatCannotBeatTheBest) {
   auto steps_until_stop = [](double best, double limit, double start, double ratio) {
     StartAbandon a(best);
