@@ -33,7 +33,7 @@ inline ProbeBoxInS ProbeBox(const BvhNode& node, const RelativePose& X_SP,
 // true if they prove the boxes more than `distance` apart.
 inline bool AabbsApart(const ProbeBoxInS& a, const BvhNode& b, double distance) {
   const Vector3 c = (a.p_SA - b.center_M).cwiseAbs();
-  return (c.array() > (a.aabb_half_S + b.aabb_half_M).array() + distance).any();
+  return (c.array() > (a.aabb_half_S + b.aabb_half_M.cast<double>()).array() + distance).any();
 }
 
 // ProbeBox of the node last asked for, kept for the next call: a descent
@@ -252,7 +252,7 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
   };
   // The axis-aligned bounds in S first (no rotation product: they settle
   // most rejected pairs), then the boxes' face axes.
-  const Vector3 r = a.aabb_half_S + b.aabb_half_M;
+  const Vector3 r = a.aabb_half_S + b.aabb_half_M.cast<double>();
   for (int i = 0; i < 3; ++i)
     if (!clip(c[i], sweep_S[i], r[i] + grow)) return false;
   internal::BoxPair p(a, b);

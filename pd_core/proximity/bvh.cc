@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 
 #include <Eigen/Eigenvalues>
@@ -56,10 +57,20 @@ Bvh Bvh::FromNodes(std::vector<BvhNode> nodes, std::vector<int32_t> order) {
   return bvh;
 }
 
+namespace {
+// The float nearest x from above (a bound stays a bound).
+float RoundUp(double x) {
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+}  // namespace
+
 void Bvh::DeriveBounds(std::vector<BvhNode>* nodes) {
   for (BvhNode& n : *nodes) {
-    n.aabb_half_M = n.R_MB.cwiseAbs() * n.half_B;
-    n.radius = n.half_B.norm();
+    const Vector3 aabb = n.R_MB.cwiseAbs() * n.half_B;
+    for (int i = 0; i < 3; ++i) n.aabb_half_M[i] = RoundUp(aabb[i]);
+    n.radius = RoundUp(n.half_B.norm());
   }
 }
 

@@ -20,9 +20,10 @@ struct BvhNode {
   Vector3 half_B;    // half extents along the box axes (m)
   // Derived from the three above (Bvh::DeriveBounds): the half extents of
   // the box's axis-aligned bounds in M and its bounding-sphere radius (m),
-  // the cheap first tests of a pair (box_overlap.h).
-  Vector3 aabb_half_M = Vector3::Zero();
-  double radius = 0.0;
+  // the cheap first tests of a pair (box_overlap.h). Floats rounded up
+  // (never smaller than the box's): 16 bytes per node, not 32.
+  Eigen::Vector3f aabb_half_M = Eigen::Vector3f::Zero();
+  float radius = 0.0f;
   int32_t right_or_first = 0;  // internal: right child; leaf: first slot in order()
   int32_t count = 0;           // 0 for internal nodes, else triangles in the leaf
   bool is_leaf() const { return count > 0; }
