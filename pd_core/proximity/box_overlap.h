@@ -250,8 +250,8 @@ inline bool SweptBoxContactInterval(const ProbeBoxInS& a, const BvhNode& b,
     hi = std::min(hi, t1);
     return lo <= hi;
   };
-  // The axis-aligned bounds in S first (no rotation product: they settle
-  // most rejected pairs), then the boxes' face axes.
+  // The axis-aligned bounds in S first (a pair they reject costs no
+  // rotation product), then the boxes' face axes.
   const Vector3 r = a.aabb_half_S + b.aabb_half_M.cast<double>();
   for (int i = 0; i < 3; ++i)
     if (!clip(c[i], sweep_S[i], r[i] + grow)) return false;
