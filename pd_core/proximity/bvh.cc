@@ -58,12 +58,20 @@ Bvh Bvh::FromNodes(std::vector<BvhNode> nodes, std::vector<int32_t> order) {
 }
 
 namespace {
+
 // The float nearest x from above (a bound stays a bound).
 float RoundUp(double x) {
   float f = static_cast<float>(x);
   if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
   return f;
 }
+
+// Surface area (over 2) of the axis-aligned box [lo, hi].
+double BoxArea(const Vector3& lo, const Vector3& hi) {
+  const Vector3 e = hi - lo;
+  return e.x() * e.y() + e.y() * e.z() + e.z() * e.x();
+}
+
 }  // namespace
 
 void Bvh::DeriveBounds(std::vector<BvhNode>* nodes) {
@@ -73,16 +81,6 @@ void Bvh::DeriveBounds(std::vector<BvhNode>* nodes) {
     n.radius = RoundUp(n.half_B.norm());
   }
 }
-
-namespace {
-
-// Surface area (over 2) of the axis-aligned box [lo, hi].
-double BoxArea(const Vector3& lo, const Vector3& hi) {
-  const Vector3 e = hi - lo;
-  return e.x() * e.y() + e.y() * e.z() + e.z() * e.x();
-}
-
-}  // namespace
 
 // Top-down, O(n log n). A node is split where the two children's bounds
 // cost least, each child's surface area times its triangle count (the
