@@ -92,17 +92,17 @@ std::string FindMeshDir() {
 }
 
 void PrintHeadlines(const BenchRun& run) {
-  std::printf("\n%-18s %-8s %5s %10s %10s %10s %6s %6s %8s %7s %7s %6s %6s %9s %9s %9s %9s\n",
-              "pair", "scenario", "cases", "median_us", "p95_us", "p99_us", "iters", "starts",
+  std::printf("\n%-18s %-8s %5s %10s %10s %10s %6s %6s %6s %8s %7s %7s %6s %6s %9s %9s %9s %9s\n",
+              "pair", "scenario", "cases", "median_us", "p95_us", "p99_us", "iters", "starts", "iter_s",
               "boxes", "tris", "valid", "!free+", "ref_n", "mean|err|", "p95|err|", "max|err|",
               "signed");
   for (const PairResult& p : run.pairs)
     for (const ScenarioResult& s : p.scenarios) {
       const ScenarioSummary m = Summarize(s);
-      std::printf("%-18s %-8s %5d %10.1f %10.1f %10.1f %6.2f %6.2f %8.0f %7.0f %6.1f%% %6d %6d "
+      std::printf("%-18s %-8s %5d %10.1f %10.1f %10.1f %6.2f %6.2f %6.2f %8.0f %7.0f %6.1f%% %6d %6d "
                   "%8.2f%% %8.2f%% %8.2f%% %8.2f%%\n",
                   p.pair.name.c_str(), ScenarioName(s.scenario), m.n, m.time_us.median,
-                  m.time_us.p95, m.time_us.p99, m.mean_iterations, m.mean_starts,
+                  m.time_us.p95, m.time_us.p99, m.mean_iterations, m.mean_starts, m.mean_iterated_starts,
                   m.mean_box_tests, m.mean_triangle_tests, 100 * (m.n > 0 ? (m.n - m.n_invalid) / double(m.n) : 0.0), m.n_not_free_beyond,
                   m.n_ref, 100 * m.abs_error.mean, 100 * m.abs_error.p95, 100 * m.abs_error.max,
                   100 * m.signed_mean_error);

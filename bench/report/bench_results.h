@@ -31,6 +31,7 @@ struct PdOutcome {
   double time_us = kNaN;      // result.time_us
   int iterations = 0, contacts = 0;
   int starts = 0;             // result.starts (cold starts out-projected)
+  int iterated_starts = 0;    // result.iterated_starts (searches of the contact space)
   double box_tests = 0, triangle_tests = 0;  // result.box_tests / triangle_tests (work)
   pd::PenetrationResult::Work work;          // result.work: that work by kind of query
   // Still free kHapticFreeMargin (2e-6) of the pair's size further along the

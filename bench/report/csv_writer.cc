@@ -42,7 +42,7 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
   {
     std::ofstream f = Open(dir + "/pd_cases.csv");
     f << "pair,scenario,index,colliding,pd_valid,pd_verified_free,pd_depth_m,pd_time_us,"
-         "pd_in_pocket,pd_iterations,pd_contacts,pd_initializer,pd_tx_m,pd_ty_m,pd_tz_m,"
+         "pd_in_pocket,pd_iterations,pd_starts,pd_iterated_starts,pd_contacts,pd_initializer,pd_tx_m,pd_ty_m,pd_tz_m,"
          "ref_depth_m,ref_time_ms,ref_directions,ref_check_pd_free,ref_answer_free,pd_rel_error,"
          "fcl_convex_collide,fcl_convex_depth_m,fcl_convex_time_us,fcl_convex_rel_error,"
          "fcl_mesh_collide,fcl_mesh_depth_m,fcl_mesh_time_us,fcl_mesh_contacts,"
@@ -54,7 +54,7 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
           f << p.pair.name << ',' << ScenarioName(s.scenario) << ',' << r.c.index << ','
             << r.c.colliding << ',' << r.pd.valid << ',' << r.pd.verified_free << ','
             << Num(r.pd.depth) << ',' << Num(r.pd.time_us) << ',' << r.pd.in_pocket << ','
-            << r.pd.iterations << ','
+            << r.pd.iterations << ',' << r.pd.starts << ',' << r.pd.iterated_starts << ','
             << r.pd.contacts << ',' << r.pd.initializer << ',' << Num(r.pd.translation_W.x())
             << ',' << Num(r.pd.translation_W.y()) << ',' << Num(r.pd.translation_W.z()) << ',';
           if (r.has_ref)

@@ -171,10 +171,10 @@ void ModelsSection(const BenchRun& run, std::ostream& md) {
 void ResultsSection(const BenchRun& run, std::ostream& md) {
   md << "## PolyDepth results (default options)\n\n"
         "| Pair (probe vs scene tris) | Scenario | Cases | Median us | p90 us | p99 us | "
-        "Max us | Iter. mean | Boxes / tris mean | Contacts mean | valid | verified free | pocket | Ref cases | "
+        "Max us | Iter. mean | Starts landed / iterated mean | Boxes / tris mean | Contacts mean | valid | verified free | pocket | Ref cases | "
         "ref-check free | mean \\|err\\| | p95 \\|err\\| | max \\|err\\| | signed mean | "
         "PD < ref | excess over best known: mean / max |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const PairResult& p : run.pairs)
     for (const ScenarioResult& s : p.scenarios) {
       const ScenarioSummary m = Summarize(s);
@@ -182,6 +182,7 @@ void ResultsSection(const BenchRun& run, std::ostream& md) {
          << p.pair.scene->triangles << ") | " << ScenarioName(s.scenario) << " | " << m.n
          << " | " << F(m.time_us.median) << " | " << F(m.time_us.p90) << " | " << F(m.time_us.p99)
          << " | " << F(m.time_us.max) << " | " << F(m.mean_iterations, 2) << " | "
+         << F(m.mean_starts, 1) << " / " << F(m.mean_iterated_starts, 2) << " | "
          << F(m.mean_box_tests, 0) << " / " << F(m.mean_triangle_tests, 0) << " | "
          << F(m.mean_contacts, 1) << " | " << Pct(m.valid_rate, 1) << " | "
          << Pct(m.verified_rate, 1) << " | " << m.n_pocket << " | " << m.n_ref << " | "

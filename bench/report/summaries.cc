@@ -67,7 +67,7 @@ double RelativeError(double depth, double ref) {
 
 ScenarioSummary Summarize(const ScenarioResult& s) {
   ScenarioSummary out;
-  std::vector<double> starts, boxes, triangles;
+  std::vector<double> starts, iterated_starts, boxes, triangles;
   std::vector<pd::PenetrationResult::Work> works;
   std::vector<double> times, iterations, contacts, errors, excess, ref_ms, ref_pd_us;
   int valid = 0, verified = 0, ref_free = 0;
@@ -77,6 +77,7 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
     times.push_back(r.pd.time_us);
     iterations.push_back(r.pd.iterations);
     starts.push_back(r.pd.starts);
+    iterated_starts.push_back(r.pd.iterated_starts);
     boxes.push_back(r.pd.box_tests);
     triangles.push_back(r.pd.triangle_tests);
     works.push_back(r.pd.work);
@@ -103,6 +104,7 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
   out.mean_iterations = Mean(iterations);
   out.mean_contacts = Mean(contacts);
   out.mean_starts = Mean(starts);
+  out.mean_iterated_starts = Mean(iterated_starts);
   out.mean_box_tests = Mean(boxes);
   out.mean_triangle_tests = Mean(triangles);
   out.work = SharesOf(works);

@@ -30,6 +30,7 @@ struct ScenarioSummary {
   Summary time_us;
   double mean_iterations = kNaN, mean_contacts = kNaN;
   double mean_starts = kNaN;    // cold starts out-projected per query
+  double mean_iterated_starts = kNaN;  // of those (and coherent starts), iterated per query
   // Work per query (deterministic, unlike times): box and triangle-pair tests.
   double mean_box_tests = kNaN, mean_triangle_tests = kNaN;
   WorkShares work;              // where that work went

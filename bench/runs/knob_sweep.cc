@@ -90,7 +90,15 @@ std::vector<KnobConfig> SweepConfigs() {
   sweep("cold_deep_probes", &O::cold_deep_probes, Ints{0, 2});
   // Bounded time (PolyDepthOptions::max_time_us; unbounded by default): what
   // a caller who cannot wait gets from a cold query.
-  sweep("max_time_us", &O::max_time_us, Doubles{0.0, 1000.0, 3000.0});
+  sweep("max_time_us", &O::max_time_us, Doubles{0.0, 1000.0, 2000.0, 3000.0});
+  // The same budgets iterating as many starts as an unbounded query (3, not
+  // num_iterated_starts_bounded's 1): the same-run baseline for that default.
+  for (double us : {1000.0, 2000.0, 3000.0}) {
+    KnobConfig k{Label("max_time_us_3_iterated", us), d};
+    k.options.max_time_us = us;
+    k.options.num_iterated_starts_bounded = d.num_iterated_starts;
+    out.push_back(k);
+  }
   out.push_back({"default", d, true, true});
   KnobConfig cold{"warm_start=off", d, true};
   cold.options.warm_start = false;

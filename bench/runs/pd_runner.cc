@@ -16,6 +16,7 @@ PdOutcome Check(const BenchPair& pair, const Case& c, const pd::Isometry3& X_WS,
   o.time_us = r.time_us;
   o.iterations = r.iterations;
   o.starts = r.starts;
+  o.iterated_starts = r.iterated_starts;
   o.box_tests = static_cast<double>(r.box_tests);
   o.triangle_tests = static_cast<double>(r.triangle_tests);
   o.work = r.work;

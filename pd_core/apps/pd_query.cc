@@ -130,6 +130,10 @@ int main(int argc, char** argv) {
                  "cold: starts refined by iteration, closest landing first")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--iterated-starts-bounded", options.num_iterated_starts_bounded,
+                 "cold, under --max-work or --max-time-us: at most this many starts iterated")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--start-gate", options.cold_start_gate,
                  "cold: a start after the first is iterated only if it lands within this "
                  "fraction above the best answer so far")

@@ -29,11 +29,11 @@ bool StartAbandon::Update(double norm) {
 
 void InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions,
                       std::initializer_list<double> fractions, int max_out,
-                      std::vector<Vector3>* out_S) {
+                      std::vector<Vector3>* out_S, const std::function<bool()>& stop) {
   int found = 0;
   for (double f : fractions) {
     for (int i = 0; i < num_directions; ++i) {
-      if (found >= max_out) return;
+      if (found >= max_out || (stop && stop())) return;
       const Vector3 q = f * best_norm * FibonacciDirection(i, num_directions);
       if (!InCollisionExpectingDepth(pair, q)) {
         out_S->push_back(q);

@@ -42,6 +42,10 @@ struct PenetrationResult {
   int num_contacts = 0;  // feature pairs (vertex-face, face-vertex, edge-edge) at the answer
   int iterations = 0;    // contact-space projection iterations
   int starts = 0;        // cold starts out-projected (0 when warm starts sufficed)
+  // Starts iterated: the contact-space searches this query ran, each from
+  // one free contact configuration (a cold start's landing, a shell or inner
+  // probe's, a coherent start); `iterations` is their steps in total.
+  int iterated_starts = 0;
   Initializer initializer = Initializer::kNone;
   // False when a work budget (PolyDepthOptions::max_work) stopped the search
   // early: the answer is still verified free (an upper bound), just not

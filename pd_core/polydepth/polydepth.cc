@@ -564,6 +564,7 @@ struct PolyDepthSolver::Impl {
   double best_norm = 0.0;
   Initializer best_origin = Initializer::kNone;
   int iterations = 0;
+  int iterated_starts = 0;  // Iterate calls this query (PenetrationResult::iterated_starts)
 
   // A coherent iterate that has left the list's reach (a basin switch
   // moving the answer by millimetres) would localise and out-project by full
@@ -628,6 +629,7 @@ struct PolyDepthSolver::Impl {
   bool off_contact = false;  // q_c is a reached in-projection target, not a landing
   bool localised_here = false;  // `constraints` hold q_c's localisation already
   if (abandon) abandon->Update(norm_c);
+  ++s.iterated_starts;
   for (int it = 0; it < opt.max_iterations; ++it) {
     if (s.OutOfBudget()) break;
     if (s.JoinsAnEarlierStart(q_c, norm_c)) break;
@@ -858,6 +860,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   const double margin = options_.separation_margin * size;
   const double contact_distance = options_.contact_tol * size;
   s.iterations = 0;
+  s.iterated_starts = 0;
   s.constraints_q_S = Vector3::Constant(1e300);
   s.best_constraints_q_S = Vector3::Constant(1e300);
   // Localises at the best answer unless `constraints` hold it already; the
@@ -1153,7 +1156,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     // Random directions drawn afresh from the seed (same query, same answer).
     s.rng.seed(options_.seed);
     const int num_clear = options_.num_maximally_clear;
-    const int num_iterated = options_.num_iterated_starts;
+    const bool bounded = options_.max_work > 0 || options_.max_time_us > 0.0;
+    const int num_iterated =
+        bounded ? std::min(options_.num_iterated_starts, options_.num_iterated_starts_bounded)
+                : options_.num_iterated_starts;
     ComputeSupportPlaneStarts(pair, std::max(num_clear, kMinSupportDirections), &s.support_starts);
     // Maximally clear: the best support-plane separations of the two models.
     for (int i = 0; i < std::min<int>(num_clear, s.support_starts.size()); ++i)
@@ -1274,7 +1280,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
         !s.OutOfBudget()) {
       s.inner_starts.clear();
       InnerProbeStarts(pair, s.best_norm, options_.cold_shell_probes, {kShellRadius},
-                       kShellIterated, &s.inner_starts);
+                       kShellIterated, &s.inner_starts, s.stop_ccd);
       iterate_inner_starts();
     }
     // Then deeper inside the (possibly shallower) answer: pockets.
@@ -1283,12 +1289,12 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
       // Deeper fractions first: the first free ones are the most promising.
       s.inner_starts.clear();
       InnerProbeStarts(pair, s.best_norm, options_.cold_inner_probes, {0.7, 0.9}, 2,
-                       &s.inner_starts);
+                       &s.inner_starts, s.stop_ccd);
       // Deeper still, on a denser set of directions, after those (which
       // they must not displace: see cold_deep_probes).
       if (options_.cold_deep_probes > 0)
         InnerProbeStarts(pair, s.best_norm, kDeepProbeDirections, {0.3, 0.5},
-                         options_.cold_deep_probes, &s.inner_starts);
+                         options_.cold_deep_probes, &s.inner_starts, s.stop_ccd);
       iterate_inner_starts();
     }
     // The best answer's local model may put its optimum a little shorter
@@ -1541,6 +1547,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   result.valid = valid;
   result.converged = !s.stopped_early && !s.landings_cut;
   result.iterations = s.iterations;
+  result.iterated_starts = s.iterated_starts;
   result.initializer = s.best_origin;
   if (s.best_origin != Initializer::kNone) {
     const Matrix3 R_WS = X_WS.linear();

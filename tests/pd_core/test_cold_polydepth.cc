@@ -268,6 +268,34 @@ TEST(ColdPolyDepth, EverySupportPlaneStartIsLandedAndCounted) {
   }
 }
 
+// `iterated_starts` counts the searches a query ran: with the gate open
+// (every one of the closest landings is iterated) and no shell or inner
+// probes, exactly num_iterated_starts; with the shell, its free probes are
+// iterated too (up to 4), never fewer than without it.
+TEST(ColdPolyDepth, TheIteratedStartsAreCounted) {
+  PD_REQUIRE_FILE(kMeshDir + "/elephant.off", "run scripts/fetch_meshes.sh");
+  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
+  const ColdPoses c = LoadColdPoses("elephant.off", "cow.off", 5);
+  for (int n : {1, 3}) {
+    PolyDepthOptions ungated;
+    ungated.cold_inner_probes = 0;
+    ungated.cold_shell_probes = 0;
+    ungated.cold_start_gate = 1e300;
+    ungated.num_iterated_starts = n;
+    PolyDepthOptions shell = ungated;
+    shell.cold_shell_probes = 256;
+    for (size_t i = 0; i < c.poses.size(); ++i) {
+      const PenetrationResult a = PolyDepthSolver(c.P, c.S, ungated).Solve(c.poses[i], c.X_WS);
+      const PenetrationResult b = PolyDepthSolver(c.P, c.S, shell).Solve(c.poses[i], c.X_WS);
+      ASSERT_TRUE(a.valid && b.valid) << "pose " << i;
+      EXPECT_EQ(a.iterated_starts, n) << "pose " << i;
+      EXPECT_GE(b.iterated_starts, n) << "pose " << i;
+      EXPECT_LE(b.iterated_starts, n + 4) << "pose " << i;
+      EXPECT_GE(a.iterations, a.iterated_starts) << "pose " << i;
+    }
+  }
+}
+
 // The shell (PolyDepthOptions::cold_shell_probes): after the iterated
 // starts, probes at 0.995 of the answer's length in 256 directions find the
 // other basins shallower than it. On these poses (found by scanning 216
