@@ -34,10 +34,11 @@ Output (stdout): one JSON object per pose line, in order:
   {"collision", "valid", "depth", "translation": [x,y,z], "normal": [x,y,z],
    "iterations", "contacts", "regions": [{"point", "normal", "local_depth"}],
    "initializer", "converged", "list_builds", "list_build_us", "starts",
-   "box_tests", "triangle_tests", "time_us"}
+   "iterated_starts", "box_tests", "triangle_tests", "time_us"}
 all vectors in W, lengths in metres; translation moves the probe out of
 collision; time_us is solver time only; starts, box_tests and triangle_tests
-are the query's cold starts and work (machine-independent cost); converged
+are the query's cold starts and work (machine-independent cost);
+iterated_starts the starts it iterated (searches of the contact space); converged
 is false when --max-work or --max-time-us stopped the search early (the
 answer is still verified free);
 list_builds counts the --coherent query's rebuilds of its list of leaf pairs
@@ -72,6 +73,7 @@ nlohmann::ordered_json ToJson(const pd::PenetrationResult& r) {
           {"list_builds", r.list_builds},
           {"list_build_us", r.list_build_us},
           {"starts", r.starts},
+          {"iterated_starts", r.iterated_starts},
           {"box_tests", r.box_tests},
           {"triangle_tests", r.triangle_tests},
           {"time_us", r.time_us}};
