@@ -246,8 +246,9 @@ TEST(ColdPolyDepth, StartsJoiningAnEarlierStartsDescentSaveWorkNotDepth) {
 // support-plane directions (96 by default) and the centroid start, every
 // one counted in `starts` (with the shell and inner probes it
 // out-projects), and
-// iterates num_iterated_starts of them. (What more landings buy in accuracy
-// is bench_pd's to measure: PolyDepthOptions documents it.)
+// iterates num_iterated_starts of them, counted in `iterated_starts`. (What
+// more landings buy in accuracy is bench_pd's to measure: PolyDepthOptions
+// documents it.)
 TEST(ColdPolyDepth, EverySupportPlaneStartIsLandedAndCounted) {
   PD_REQUIRE_FILE(kMeshDir + "/elephant.off", "run scripts/fetch_meshes.sh");
   PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
@@ -259,39 +260,34 @@ TEST(ColdPolyDepth, EverySupportPlaneStartIsLandedAndCounted) {
   ASSERT_EQ(no_inner.num_random, 0);
   PolyDepthOptions few = no_inner;
   few.num_maximally_clear = 8;
+  // `iterated_starts` counts the searches a query ran: with the gate open
+  // (every one of the closest landings is iterated) and no shell or inner
+  // probes, exactly num_iterated_starts (1 or 3); with the shell, its free
+  // probes are iterated too (up to 4).
+  PolyDepthOptions ungated[2], shell[2];
+  const int iterated[2] = {1, 3};
+  for (int k = 0; k < 2; ++k) {
+    ungated[k] = no_inner;
+    ungated[k].cold_start_gate = 1e300;
+    ungated[k].num_iterated_starts = iterated[k];
+    shell[k] = ungated[k];
+    shell[k].cold_shell_probes = 256;
+  }
   for (size_t i = 0; i < c.poses.size(); ++i) {
-    const PenetrationResult a = PolyDepthSolver(c.P, c.S, no_inner).Solve(c.poses[i], c.X_WS);
-    const PenetrationResult b = PolyDepthSolver(c.P, c.S, few).Solve(c.poses[i], c.X_WS);
+    auto solve = [&](const PolyDepthOptions& o) {
+      return PolyDepthSolver(c.P, c.S, o).Solve(c.poses[i], c.X_WS);
+    };
+    const PenetrationResult a = solve(no_inner), b = solve(few);
     ASSERT_TRUE(a.valid && b.valid) << "pose " << i;
     EXPECT_EQ(a.starts, 96 + 1) << "pose " << i;
     EXPECT_EQ(b.starts, 8 + 1) << "pose " << i;
-  }
-}
-
-// `iterated_starts` counts the searches a query ran: with the gate open
-// (every one of the closest landings is iterated) and no shell or inner
-// probes, exactly num_iterated_starts; with the shell, its free probes are
-// iterated too (up to 4), never fewer than without it.
-TEST(ColdPolyDepth, TheIteratedStartsAreCounted) {
-  PD_REQUIRE_FILE(kMeshDir + "/elephant.off", "run scripts/fetch_meshes.sh");
-  PD_REQUIRE_FILE(kMeshDir + "/cow.off", "run scripts/fetch_meshes.sh");
-  const ColdPoses c = LoadColdPoses("elephant.off", "cow.off", 5);
-  for (int n : {1, 3}) {
-    PolyDepthOptions ungated;
-    ungated.cold_inner_probes = 0;
-    ungated.cold_shell_probes = 0;
-    ungated.cold_start_gate = 1e300;
-    ungated.num_iterated_starts = n;
-    PolyDepthOptions shell = ungated;
-    shell.cold_shell_probes = 256;
-    for (size_t i = 0; i < c.poses.size(); ++i) {
-      const PenetrationResult a = PolyDepthSolver(c.P, c.S, ungated).Solve(c.poses[i], c.X_WS);
-      const PenetrationResult b = PolyDepthSolver(c.P, c.S, shell).Solve(c.poses[i], c.X_WS);
-      ASSERT_TRUE(a.valid && b.valid) << "pose " << i;
-      EXPECT_EQ(a.iterated_starts, n) << "pose " << i;
-      EXPECT_GE(b.iterated_starts, n) << "pose " << i;
-      EXPECT_LE(b.iterated_starts, n + 4) << "pose " << i;
-      EXPECT_GE(a.iterations, a.iterated_starts) << "pose " << i;
+    for (int k = 0; k < 2; ++k) {
+      const PenetrationResult u = solve(ungated[k]), w = solve(shell[k]);
+      ASSERT_TRUE(u.valid && w.valid) << "pose " << i;
+      EXPECT_EQ(u.iterated_starts, iterated[k]) << "pose " << i;
+      EXPECT_GE(w.iterated_starts, iterated[k]) << "pose " << i;
+      EXPECT_LE(w.iterated_starts, iterated[k] + 4) << "pose " << i;
+      EXPECT_GE(u.iterations, u.iterated_starts) << "pose " << i;
     }
   }
 }
