@@ -2,13 +2,10 @@
 # haptic scenario on that pair alone; a name of no pair is an error naming it.
 include(${CMAKE_CURRENT_LIST_DIR}/require_meshes.cmake)
 require_meshes("${MESH_DIR}" knot1.off camel.off)
+include(${CMAKE_CURRENT_LIST_DIR}/bench_pd_script.cmake)
 file(REMOVE_RECURSE "${OUT}")
-execute_process(COMMAND ${BENCH} --quick --haptic-ref 0 --haptic-more-paths 0 --haptic-budget-us 0
-                        --pairs knot1_camel --mesh-dir ${MESH_DIR} --out ${OUT}
-                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "bench_pd --pairs knot1_camel exited ${rc}: ${err}")
-endif()
+run_bench_pd(${OUT} --quick --haptic-ref 0 --haptic-more-paths 0 --haptic-budget-us 0
+             --pairs knot1_camel --mesh-dir ${MESH_DIR})
 file(STRINGS "${OUT}/pd_haptic_paths.csv" lines)
 list(LENGTH lines n)
 if(NOT n EQUAL 2)

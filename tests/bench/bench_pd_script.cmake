@@ -1,0 +1,30 @@
+# Helpers of the bench_pd script tests (tests/bench/*_test.cmake).
+
+# run_bench_pd(OUT_DIR ARG...): runs ${BENCH} ARG... --out OUT_DIR and fails,
+# naming the arguments and bench_pd's stderr, unless it exits 0.
+function(run_bench_pd out_dir)
+  execute_process(COMMAND ${BENCH} ${ARGN} --out ${out_dir}
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "bench_pd ${ARGN} exited ${rc}: ${err}")
+  endif()
+endfunction()
+
+# read_csv(CSV PREFIX COLUMN...): sets PREFIX_rows to the CSV's data lines
+# and PREFIX_<COLUMN> to each named column's index; fails naming a column the
+# header lacks. (Split a row into fields with string(REPLACE "," ";" ...)
+# under CMP0007 NEW, which keeps empty fields.)
+function(read_csv csv prefix)
+  file(STRINGS "${csv}" lines)
+  list(GET lines 0 header)
+  string(REPLACE "," ";" columns "${header}")
+  foreach(name ${ARGN})
+    list(FIND columns "${name}" i)
+    if(i LESS 0)
+      message(FATAL_ERROR "${csv} lacks ${name}: ${header}")
+    endif()
+    set(${prefix}_${name} ${i} PARENT_SCOPE)
+  endforeach()
+  list(REMOVE_AT lines 0)
+  set(${prefix}_rows "${lines}" PARENT_SCOPE)
+endfunction()
