@@ -532,6 +532,9 @@ struct PolyDepthSolver::Impl {
     return stopped_early = true;
   }
   const std::function<bool()> stop_ccd = [this] { return OutOfBudget(); };
+  // The query has a work or time budget (PolyDepthOptions::max_work,
+  // max_time_us).
+  bool Bounded() const { return work_limit > 0 || time_limit_us > 0.0; }
   // True once `share` of the budget is spent (never without a budget).
   bool BudgetSpent(double share = 1.0) const {
     return (work_limit > 0 && counters.box_tests + counters.triangle_tests >= share * work_limit) ||
@@ -853,7 +856,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   s.landings_cut = false;
   // Bounded time: once the budget is spent and a verified answer exists, a
   // CCD under way stops too, at a point it knows free (translational_ccd.h).
-  if (s.work_limit > 0 || s.time_limit_us > 0.0) pair.stop_ccd = &s.stop_ccd;
+  if (s.Bounded()) pair.stop_ccd = &s.stop_ccd;
   s.list_builds = 0;
   s.list_build_us = 0.0;
   const double size = pair.size();
@@ -1156,10 +1159,9 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     // Random directions drawn afresh from the seed (same query, same answer).
     s.rng.seed(options_.seed);
     const int num_clear = options_.num_maximally_clear;
-    const bool bounded = options_.max_work > 0 || options_.max_time_us > 0.0;
     const int num_iterated =
-        bounded ? std::min(options_.num_iterated_starts, options_.num_iterated_starts_bounded)
-                : options_.num_iterated_starts;
+        s.Bounded() ? std::min(options_.num_iterated_starts, options_.num_iterated_starts_bounded)
+                    : options_.num_iterated_starts;
     ComputeSupportPlaneStarts(pair, std::max(num_clear, kMinSupportDirections), &s.support_starts);
     // Maximally clear: the best support-plane separations of the two models.
     for (int i = 0; i < std::min<int>(num_clear, s.support_starts.size()); ++i)

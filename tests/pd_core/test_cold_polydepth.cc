@@ -379,8 +379,6 @@ TEST(ColdPolyDepth, ScreenedStartsSaveWorkNotDepth) {
   EXPECT_LE(depth_on, 1.005 * depth_off);
 }
 
-// The early stop extrapolates a geometric descent: a start heading for a
-// limit above the best answer stops, one heading below it goes on.
 // A cold answer is backed off the contact by exactly one separation margin,
 // also where the final polish (the best answer's local model solved once
 // more) sets it: a needle lying into a flat face, whose PD is how far its
@@ -410,6 +408,8 @@ TEST(ColdPolyDepth, AnAnswerIsOneSeparationMarginClearOfTheContact) {
   }
 }
 
+// The early stop extrapolates a geometric descent: a start heading for a
+// limit above the best answer stops, one heading below it goes on.
 TEST(StartAbandon, StopsOnlyStartsThatCannotBeatTheBest) {
   auto steps_until_stop = [](double best, double limit, double start, double ratio) {
     StartAbandon a(best);
