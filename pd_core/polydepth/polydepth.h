@@ -7,7 +7,7 @@
 // state and scratch memory, so different pairs can be solved on different
 // threads at once. The CollisionModels are immutable and shared.
 //
-// Algorithm (see polydepth.cc for details):
+// Algorithm (polydepth_search.h lists the file of each step):
 //  1. Collision test at the query (surface intersection or solid containment).
 //  2. Collision-free starts from the initialisers, in this order: motion
 //     coherence (if warm-started), maximally clear configurations, centroid
@@ -163,7 +163,7 @@ struct PolyDepthOptions {
   // From this iteration of a coherent search on (a basin switch creeping a
   // few micrometres per step), its local model keeps the constraints of the
   // earlier iterates still within contact_tol of it by plane distance
-  // (polydepth.cc, JoinEarlierConstraints). 0 = off.
+  // (search_iteration.cc, JoinEarlierConstraints). 0 = off.
   int creep_join_iterations = 6;
   // Warm-started queries keep a list of the leaf pairs within this distance
   // of the previous contact and reuse it while the probe stays inside that

@@ -39,7 +39,7 @@ const test::PathRows kCowUnderOverhang = {
 };
 
 // Before the clearing direction was tried ahead of the far step-offs
-// (polydepth.cc, step 1), the restart at the last pose stepped off 64
+// (coherent_restart.cc, step 1), the restart at the last pose stepped off 64
 // motions along the previous answer, landed at 7x the answer's length and
 // iterated back down into a deeper basin: 2.13 mm in 19k box and triangle
 // tests, against 1.94 mm in 3.9k from the clearing direction (the

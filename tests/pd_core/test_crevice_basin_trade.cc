@@ -36,7 +36,7 @@ const test::PathRows kCowIntoCrevice = {
 };
 
 // Before the check probed more directions per query while the answer grows
-// fast (polydepth.cc, kCheckPerQueryFast), the check started at pose 2267
+// fast (coherence_checks.cc, kCheckPerQueryFast), the check started at pose 2267
 // found the other basin at 2272: at 2271 the answer was 2.96 mm against the
 // reference's 2.48 (+19%, the bench's worst sampled pose on this path).
 TEST(CreviceBasinTrade, CowIntoArmadilloCreviceFindsTheOtherBasinWhileGrowing) {

@@ -39,7 +39,7 @@ const test::PathRows kCowBesideShallowerBasin = {
 };
 
 // A warm solve along `rows` must end within 3% of the reference PD, with at
-// least one query's neighbour-basin probe (polydepth.cc, step 2e) leading to
+// least one query's neighbour-basin probe (coherence_checks.cc, step 2e) leading to
 // a shorter answer in another basin.
 void ExpectEndsInTheShallowerBasin(const test::PathRows& rows) {
   for (const char* f : {"cow.off", "armadillo.off"})

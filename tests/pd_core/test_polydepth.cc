@@ -498,7 +498,7 @@ TEST(PolyDepth, CoherentPathStaysValidAndNearReference) {
       }
       EXPECT_LE(r.depth, local_ref * 1.15) << "step " << i;
       // Along its own direction the answer is exactly where the probe leaves,
-      // but for an answer moved out of a thin free pocket (polydepth.cc, 3a):
+      // but for an answer moved out of a thin free pocket (pocket_escape.cc, step 3a):
       // that one keeps the escape's 2 pocket thicknesses of room.
       const double along = DirectionalPenetration(P->mesh(), X_WP, true, S->mesh(), X_WS, true,
                                                   n, 1e-9);

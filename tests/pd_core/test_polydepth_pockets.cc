@@ -397,7 +397,7 @@ TEST(WarmPathWork, FandiskBroadContactKeepsListRebuildsBounded) {
 // 1510 box + triangle tests before, 508 after; what is left is mostly the
 // cost of the query's first answer (the budget never stops a query before
 // it has one). The search now stops at 85% of the budget, leaving the rest
-// to the answer's finish (polydepth.cc, kSearchShare): of the stopped
+// to the answer's finish (polydepth_search.h, kSearchShare): of the stopped
 // queries, pocket escapes included, none ended within the budget before
 // (27, median 767 tests past it), 23 of 45 do now (median 48 short of it).
 // (More queries stop: they reach 85% of it.)
