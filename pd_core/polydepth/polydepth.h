@@ -136,9 +136,13 @@ struct PolyDepthOptions {
   // After those, up to this many free probes deeper inside the best answer
   // (0.3 and 0.5 of its length, 96 directions) are iterated too: escapes in
   // pockets enclosed by the other model (interlocked knots) that the inner
-  // probes miss. On the benchmark's torus-knot pair (8 reference cases) 2
-  // took the mean error 59% -> 24% at +27% work; on four other pairs the
-  // errors were unchanged at +22-36% work, so off by default (0).
+  // probes miss. Before the shell, on the benchmark's torus-knot pair (8
+  // reference cases), 2 took the mean error 59% -> 24% at +27% work. With
+  // the shell (bench_pd's knob sweep at bd2de85, 24 reference cases of each
+  // of 13 pairs) 2 changed no error, torus knot included, at 0.98-1.14x the
+  // median time; on 120 other random poses of the same pair 3 found
+  // escapes 50-77% shorter (tests/pd_core/test_polydepth.cc,
+  // DeepProbes...). Off by default (0).
   int cold_deep_probes = 0;
   // A cold start after the first stops once its extrapolated limit cannot
   // beat the best verified answer (cold_starts.h, StartAbandon). Off by
