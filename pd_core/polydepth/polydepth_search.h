@@ -12,8 +12,11 @@
 //   coherence_checks.cc        steps 2b-2e: cross-checks of a coherent answer
 //                              and its neighbour basins;
 //   cold_query.cc              step 2: support-plane starts, shell and inner
-//                              probes;
+//                              probes; and the sampling-search fallback;
 //   pocket_escape.cc           step 3a: out of thin free pockets.
+// They share out_projection.h (the CCD move), contact_constraints.h
+// (localisation), min_norm_point.h (in-projection), support_plane_starts.h
+// and cold_starts.h (the cold starts' geometry).
 // Internal to pd_core. Units: m; q_S is a translation of the probe in the
 // scene frame S (ModelPair), from the query pose.
 #include <array>
