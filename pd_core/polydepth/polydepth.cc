@@ -177,7 +177,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     s.RestartFromFreeFrame(pair, options_);
 
   const bool warm_found = s.best_origin != Initializer::kNone;
-  result.warm_start_failed = warm && (s.has_previous || s.has_previous_free) && !warm_found;
+  result.warm_start_failed = moved_from_previous && !warm_found;
   // 2. Cold starts: the fallback when coherence found nothing (cold_query.cc).
   // 2b-2e. Otherwise cross-checks of the coherent answer for shallower
   // basins (coherence_checks.cc).

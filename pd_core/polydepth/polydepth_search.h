@@ -38,14 +38,6 @@
 
 namespace pd {
 
-// A collision-free configuration and where it came from.
-struct Start {
-  Vector3 q_S;
-  Initializer origin;
-  double contact_norm = 0.0;  // |q| after the first out-projection
-  Vector3 contact_q_S = Vector3::Zero();
-};
-
 struct PolyDepthSolver::Impl {
   // Under a budget the search stops at this share of it: the rest is kept for
   // the answer's finish (its verification, a pocket escape and the escaped
@@ -74,6 +66,13 @@ struct PolyDepthSolver::Impl {
   static constexpr int kBasinNormalProbes = 2;
   static constexpr int kBasinProbes = kBasinNormalProbes + 1;
 
+  // A collision-free configuration and where it came from.
+  struct Start {
+    Vector3 q_S;
+    Initializer origin;
+    double contact_norm = 0.0;  // |q| after the first out-projection
+    Vector3 contact_q_S = Vector3::Zero();
+  };
   std::vector<ContactConstraint> constraints;
   MinNormScratch qp;
   std::vector<Start> starts;

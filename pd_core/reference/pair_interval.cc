@@ -7,6 +7,14 @@ namespace pd {
 namespace reference {
 namespace {
 
+// (x, y, h) normalised and oriented along +u; zero (undefined) if it is zero.
+Normal MakeNormal(double x, double y, double h) {
+  const double norm = std::sqrt(x * x + y * y + h * h);
+  if (!(norm > 0.0)) return {};
+  const double scale = (h < 0.0 ? -1.0 : 1.0) / norm;
+  return {x * scale, y * scale, h * scale};
+}
+
 inline double Cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 inline double L1(double x, double y) { return std::abs(x) + std::abs(y); }
 

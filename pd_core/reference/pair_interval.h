@@ -7,7 +7,6 @@
 // heights of an edge parallel to u, when the projection degenerates).
 // Part of the slow independent reference (reference_pd.h).
 #include <algorithm>
-#include <cmath>
 
 #include "pd_core/reference/placed_pair.h"
 
@@ -25,13 +24,6 @@ struct Normal {
   // |u·n|: turns a gap length along u into its thickness; 1 if undefined.
   double cos() const { return h > 0.0 ? h : 1.0; }
 };
-
-inline Normal MakeNormal(double x, double y, double h) {
-  const double norm = std::sqrt(x * x + y * y + h * h);
-  if (!(norm > 0.0)) return {};
-  const double scale = (h < 0.0 ? -1.0 : 1.0) / norm;
-  return {x * scale, y * scale, h * scale};
-}
 
 // A touching interval with the contact normal at each end. Near-ties (within
 // tol) keep the normal with the larger cosine, the conservative choice for
