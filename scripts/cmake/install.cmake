@@ -61,6 +61,9 @@ set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_CONTACT "PolyDepth haptics team <haptics@localhost>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
     "6-DOF haptic rendering server (PolyDepth penetration depth, 1 kHz servo loop over LCM)")
+if(PD_CPU_LEVEL_RESOLVED STREQUAL "x86-64-v3")  # scripts/cmake/cpu_level.cmake
+  string(APPEND CPACK_PACKAGE_DESCRIPTION_SUMMARY ", built for x86-64-v3 CPUs (AVX2)")
+endif()
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_GENERATOR DEB)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Builds the Debian package with CPack and checks its contents and metadata.
-#   check_deb.sh BUILD_DIR WORK_DIR
+#   check_deb.sh BUILD_DIR WORK_DIR CPU_LEVEL
+# CPU_LEVEL: the x86-64 level the build resolved (scripts/cmake/cpu_level.cmake);
+# a package built for x86-64-v3 says so in its description.
 set -euo pipefail
-build="$1" work="$2"
+build="$1" work="$2" level="$3"
 fail() { echo "check_deb: FAIL: $1" >&2; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
 cpack --config "$build/CPackConfig.cmake" -G DEB -B "$work" >"$work/cpack.log" 2>&1 ||
@@ -22,4 +24,10 @@ depends=$(dpkg-deb -f "$deb" Depends)
 for d in libeigen3-dev liblcm-dev libjs-three libassimp5 liblcm1; do
   grep -q "$d" <<<"$depends" || fail "Depends lacks $d: $depends"
 done
+description=$(dpkg-deb -f "$deb" Description)
+if [[ "$level" == "x86-64-v3" ]]; then
+  grep -q "x86-64-v3" <<<"$description" || fail "built for x86-64-v3 but the description does not say so: $description"
+else
+  ! grep -q "x86-64-v3" <<<"$description" || fail "built for $level but the description says x86-64-v3: $description"
+fi
 echo "check_deb: PASS ($(basename "$deb"), $(wc -l <"$work/contents.txt") entries, Depends: $depends)"
