@@ -22,7 +22,7 @@ if(NOT pd_x86 AND NOT PD_CPU_LEVEL STREQUAL "auto")
   message(FATAL_ERROR "PD_CPU_LEVEL: '${PD_CPU_LEVEL}' is an x86-64 level; this build targets "
                       "${CMAKE_SYSTEM_PROCESSOR} (use auto)")
 endif()
-set(PD_CPU_LEVEL_RESOLVED default)  # not x86-64: the compiler's default
+set(PD_CPU_LEVEL_RESOLVED default)  # not x86-64, or cross-compiling: the compiler's default
 if(PD_CPU_LEVEL STREQUAL "auto" AND pd_x86 AND NOT CMAKE_CROSSCOMPILING)
   include(CheckCXXSourceRuns)
   include(CheckCXXCompilerFlag)
