@@ -9,6 +9,9 @@
 #ifndef PD_BUILD_TYPE
 #define PD_BUILD_TYPE "unknown"
 #endif
+#ifndef PD_CPU_LEVEL
+#define PD_CPU_LEVEL "unknown"
+#endif
 
 namespace pd_bench {
 namespace {
@@ -64,7 +67,7 @@ MachineInfo ReadMachineInfo(const std::string& source_dir) {
   else if (!RunCommand(git + "status --porcelain --untracked-files=no -- . ':!bench/results' "
                              "2>/dev/null").empty())
     m.git_commit += "-dirty";
-  m.build_type = PD_BUILD_TYPE;
+  m.build_type = PD_BUILD_TYPE ", " PD_CPU_LEVEL;
 #if defined(__clang__)
   m.compiler = "clang " __clang_version__;
 #elif defined(__GNUC__)

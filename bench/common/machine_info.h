@@ -10,7 +10,7 @@ struct MachineInfo {
   int num_cpus = 0;        // logical CPUs online
   std::string date_utc;    // ISO 8601
   std::string git_commit;  // `git rev-parse --short HEAD` (+ "-dirty" if modified)
-  std::string build_type;  // CMAKE_BUILD_TYPE of this binary
+  std::string build_type;  // CMAKE_BUILD_TYPE and CPU level of this binary ("Release, x86-64-v3")
   std::string compiler;
   std::string load_average;  // /proc/loadavg at the time of the call
 };

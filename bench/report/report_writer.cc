@@ -38,7 +38,7 @@ void MachineSection(const BenchRun& run, std::ostream& md) {
      << "| CPU | " << m.cpu_model << " (" << m.num_cpus << " logical CPUs) |\n"
      << "| Date | " << m.date_utc << " |\n"
      << "| Commit | `" << m.git_commit << "` |\n"
-     << "| Build type | " << m.build_type << " (" << m.compiler << ") |\n"
+     << "| Build type, CPU level | " << m.build_type << " (" << m.compiler << ") |\n"
      << "| Mode | " << (st.quick ? "--quick" : "full") << ", seed " << st.seed << " |\n"
      << "| Load average (1/5/15 min) | start " << m.load_average << ", end "
      << run.load_average_end << " |\n"

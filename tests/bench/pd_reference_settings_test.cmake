@@ -42,6 +42,10 @@ file(READ "${OUT}/random/pd_speed_error.md" md)
 if(NOT md MATCHES "300 Fibonacci directions, 4 refinement starts x 32 evaluations")
   message(FATAL_ERROR "pd_speed_error.md does not state the reference's settings (300 x 32)")
 endif()
+# Times move with the CPU level the code was compiled for: the report says which.
+if(NOT md MATCHES "\\| Build type, CPU level \\| [A-Za-z]+, ${CPU_LEVEL} \\(")
+  message(FATAL_ERROR "pd_speed_error.md does not state the build's CPU level (${CPU_LEVEL})")
+endif()
 
 # The haptic reference: its own 96 directions (quick), whatever --ref-directions.
 run_bench(haptic --quick --haptic-ref 1 --haptic-more-paths 0 --haptic-budget-us 0
