@@ -99,6 +99,7 @@ echo "run_loop_bench: $SECONDS_PER_RUN s per run; work directory $WORK" >&2
   # The committed reports (bench/results) are outputs, not the code measured.
   echo "dirty=$([[ -n "$(git -C "$ROOT" status --porcelain -- . ':!bench/results' 2>/dev/null)" ]] && echo 1 || echo 0)"
   echo "start_utc=$(date -u '+%Y-%m-%d %H:%M:%S UTC')"
+  echo "server_build=$("$BIN/haptic_server" --version)"  # version, build type, CPU level
 } > "$WORK/meta.txt"
 
 # Repeats a CSV trajectory (time,x,y,z,qw,qx,qy,qz) until it lasts `seconds`.

@@ -51,6 +51,7 @@
 #include "haptics/loop/realtime.h"
 #include "haptics/loop/servo_loop.h"
 #include "pd_core/mesh/collision_model.h"
+#include "pd_build/build_info.h"
 
 namespace {
 
@@ -135,6 +136,8 @@ std::string SummaryLine(const haptics::LoopSummary& s, const haptics::ReceiverCo
 }
 
 int Serve(const Options& opt, sigset_t* signals) {
+  // Which build is running: its CPU level sets its speed (and the CPUs it runs on).
+  spdlog::info("haptic_server {}", pd_build::Summary());
   haptics::SceneConfig config = haptics::LoadSceneConfig(opt.config);
   if (!opt.lcm_url.empty()) config.lcm.url = opt.lcm_url;
   if (!opt.geometry_thread.empty())
@@ -334,6 +337,7 @@ int main(int argc, char** argv) {
 
   Options opt;
   CLI::App app{"6-DOF haptic rendering server: probe poses in, wrenches out, over LCM."};
+  app.set_version_flag("--version", "haptic_server " + pd_build::Summary());
   app.add_option("--config", opt.config, "scene YAML file (see config/)")->required();
   app.add_option("--lcm-url", opt.lcm_url, "LCM URL, overrides lcm.url of the config");
   app.add_option("--cache-dir", opt.cache_dir,

@@ -6,12 +6,7 @@
 #include <fstream>
 #include <thread>
 
-#ifndef PD_BUILD_TYPE
-#define PD_BUILD_TYPE "unknown"
-#endif
-#ifndef PD_CPU_LEVEL
-#define PD_CPU_LEVEL "unknown"
-#endif
+#include "pd_build/build_info.h"
 
 namespace pd_bench {
 namespace {
@@ -67,12 +62,8 @@ MachineInfo ReadMachineInfo(const std::string& source_dir) {
   else if (!RunCommand(git + "status --porcelain --untracked-files=no -- . ':!bench/results' "
                              "2>/dev/null").empty())
     m.git_commit += "-dirty";
-  m.build_type = PD_BUILD_TYPE ", " PD_CPU_LEVEL;
-#if defined(__clang__)
-  m.compiler = "clang " __clang_version__;
-#elif defined(__GNUC__)
-  m.compiler = "gcc " __VERSION__;
-#endif
+  m.build_type = std::string(pd_build::kBuildType) + ", " + pd_build::kCpuLevel;
+  m.compiler = pd_build::Compiler();
   m.load_average = ReadLoadAverage();
   return m;
 }

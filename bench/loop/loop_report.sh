@@ -157,6 +157,7 @@ md="$OUT/loop_latency.md"
   echo "| Started | $(meta start_utc) |"
   echo "| Finished | $(meta end_utc) |"
   echo "| Commit | \`$commit\` |"
+  echo "| Server build | $(meta server_build) |"
   echo "| Load average (1 min) over the runs | $(awk -F, 'NR > 1 { for (i = 6; i <= 7; i++) if ($i != "") { if (lo == "" || $i < lo) lo = $i; if ($i > hi) hi = $i } } END { print lo " to " hi }' "$csv") |"
   echo
   echo "Each run: \`haptic_server\` (or the transport-only \`echo_server\`) and \`probe_replay\` as separate processes over LCM udpm on loopback, in one private network namespace (\`scripts/netns_run.sh\`, \`probes/scripts/run_session.sh\`). The replay plays the scene's 1 kHz trajectory (bench-only scenes: \`bench/scenes/*.params.yaml\` through \`probe_sim\`, a 15 s press-and-slide; default scenes: \`probes/trajectories/*.csv\`), repeated to last $secs s. The server logs every tick (\`--timing-log\`); tick statistics cover the replay (first to last tick that rendered a new pose). The machine is a shared 2-core VM: other engineers' builds ran at the same time (load average column); compare runs only at similar load."

@@ -13,6 +13,7 @@
 #include "pd_core/geometry/parse_pose_line.h"
 #include "pd_core/polydepth/penetration_result.h"
 #include "pd_core/polydepth/polydepth.h"
+#include "pd_build/build_info.h"
 
 namespace {
 
@@ -101,6 +102,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Penetration depth (PolyDepth) of PROBE_MESH against SCENE_MESH for each probe "
                "pose read from stdin."};
   app.footer(kFooter);
+  app.set_version_flag("--version", "pd_query " + pd_build::Summary());
   std::string probe_path, scene_path;
   double probe_scale = 1.0, scene_scale = 1.0;
   std::vector<std::string> scene_pose;  // parsed like an input line

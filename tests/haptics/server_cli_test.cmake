@@ -100,6 +100,21 @@ elseif(CASE STREQUAL "memq_run")
     message(FATAL_ERROR "no ticks ran:\n${out}")
   endif()
 
+elseif(CASE STREQUAL "version")
+  # --version names the build (version, build type, CPU level: the CPUs the
+  # binary runs on and its speed) and exits 0 without a config; a run logs
+  # the same line at start-up.
+  run_server(--version)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "--version: exit ${code}\n${err}")
+  endif()
+  expect_contains("${out}" "haptic_server ${BUILD_SUMMARY}" "--version's stdout")
+  run_server(--config ${CONFIG_DIR}/box_on_box.yaml --lcm-url memq:// --duration 0.2)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "memq run: exit ${code}\n${err}")
+  endif()
+  expect_contains("${err}" "haptic_server ${BUILD_SUMMARY}" "the run's log")
+
 elseif(CASE STREQUAL "timing_log")
   # --timing-log: one CSV row per tick after the run, as many as the summary's
   # ticks; an unwritable path is refused at start-up (exit 1, naming it).

@@ -206,6 +206,10 @@ if(CASE STREQUAL "command_line")
   expect_contains("${ERR}" "--scene-pose" "scene pose error")
   run_pd_query("" "${BOX}" "${BOX}" --scene-pose 0 0 0)
   expect_equal("${RC}" 3 "short --scene-pose")
+  # --version names the build: version, build type and CPU level.
+  run_pd_query("" --version)
+  expect_equal("${RC}" 0 "--version exit code")
+  expect_contains("${OUT}" "pd_query ${BUILD_SUMMARY}" "--version")
 
 elseif(CASE STREQUAL "missing_mesh")
   set(missing "${WORK_DIR}/no_such_probe.off")
