@@ -21,6 +21,11 @@ inline constexpr PaperTiming kPaperTimings[] = {
 
 // Project targets.
 inline constexpr double kTargetColdKnotMedianUs = 500.0;
+// Cold queries (random configurations of real-mesh pairs, issue 13): time
+// median and p95, error mean (kTargetMeanError), p95 (kTargetP95Error), max.
+inline constexpr double kTargetColdMedianUs = 1000.0;
+inline constexpr double kTargetColdP95Us = 5000.0;
+inline constexpr double kTargetColdMaxError = 0.10;
 inline constexpr double kTargetCoherentMedianUs = 20.0;
 inline constexpr double kTargetCoherentP99Us = 100.0;
 inline constexpr double kTargetMeanError = 0.005;

@@ -115,6 +115,7 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
   if (out.n_ref > 0) out.ref_free_rate = static_cast<double>(ref_free) / out.n_ref;
   const ErrorStats e = Errors(errors);
   out.abs_error = e.abs;
+  out.abs_error_mean_ci = BootstrapMeanInterval(Abs(errors));
   out.signed_mean_error = e.signed_mean;
   out.excess = pd_bench::Summarize(excess);
   out.ref_time_ms = pd_bench::Summarize(ref_ms);

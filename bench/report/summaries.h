@@ -43,6 +43,7 @@ struct ScenarioSummary {
   double ref_free_rate = kNaN;  // ReferenceInCollision at the answer is false
   int n_ref_not_free = 0;       // reference answers pd::InCollision finds colliding
   Summary abs_error;
+  Interval abs_error_mean_ci;   // 95% bootstrap interval of abs_error.mean
   double signed_mean_error = kNaN;
   int n_below_ref = 0;          // PolyDepth shallower than the reference by > 1e-6
   // (depth - best) / best with best = min(depth, ref): PolyDepth's overshoot
