@@ -155,7 +155,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--deep-probes", options.cold_deep_probes,
                  "cold: free probes deeper inside the best answer that are refined "
-                 "(interlocked models; default 0: off)")
+                 "(pockets the other model encloses; 0: off)")
+      ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--cold-join", options.cold_join,
                  "cold: a start stops where it comes this close (fraction of the models' "

@@ -138,12 +138,19 @@ struct PolyDepthOptions {
   // pockets enclosed by the other model (interlocked knots) that the inner
   // probes miss. Before the shell, on the benchmark's torus-knot pair (8
   // reference cases), 2 took the mean error 59% -> 24% at +27% work. With
-  // the shell (bench_pd's knob sweep at bd2de85, 24 reference cases of each
-  // of 13 pairs) 2 changed no error, torus knot included, at 0.98-1.14x the
-  // median time; on 120 other random poses of the same pair 3 found
-  // escapes 50-77% shorter (tests/pd_core/test_polydepth.cc,
-  // DeepProbes...). Off by default (0).
-  int cold_deep_probes = 0;
+  // the shell, on 24 reference cases of each of 13 pairs (bd2de85) 2
+  // changed no error; on 48 (9d51b1c) one dino_femur pose answered 35.9 mm
+  // where the reference found 4.7 mm: a pocket the femur encloses, free
+  // from 4.7 to 7.5 mm along its direction and shut beyond, so every
+  // landing from outside came in at 36 mm or more, and the inner probes (at
+  // 25 and 32 mm) saw only collision. With 2 (the knob sweep of that run):
+  // that pair's mean error 14.1% -> 0.30%, the torus knots' 37.3% -> 28.8%,
+  // no other pair's error changed, medians 0.94-1.22x (bones_coupling
+  // 1.22x, camel_cow and dragon_dragon 1.14-1.15x)
+  // (tests/pd_core/test_cold_polydepth.cc, EnclosedPocket...; on 120 random
+  // torus-knot poses 3 escapes 50-77% shorter,
+  // tests/pd_core/test_polydepth.cc, DeepProbes...). 0 = off.
+  int cold_deep_probes = 2;
   // A cold start after the first stops once its extrapolated limit cannot
   // beat the best verified answer (cold_starts.h, StartAbandon). Off by
   // default: it halves the iterations but lost 8% on an interlocked knot

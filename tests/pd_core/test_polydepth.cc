@@ -321,9 +321,10 @@ TEST(PolyDepth, TorusKnotPairMatchesReferenceWithinTolerance) {
 // it gets much shorter. Both answers are verified free.
 TEST(PolyDepth, DeepProbesFindShorterEscapesOfInterlockedKnots) {
   Model K = CollisionModel::Build(MakeTorusKnot(2, 3, 0.2, 1.0));
-  PolyDepthOptions deep_options;
+  PolyDepthOptions plain_options, deep_options;
+  plain_options.cold_deep_probes = 0;
   deep_options.cold_deep_probes = 2;
-  PolyDepthSolver plain(K, K), deep(K, K, deep_options);
+  PolyDepthSolver plain(K, K, plain_options), deep(K, K, deep_options);
   // As the benchmark's random scenario: the probe's centre at 0.1-0.8 of
   // the knot's radius from the other's, in a random direction and rotation.
   std::mt19937 rng(11);
