@@ -2,8 +2,6 @@
 // For the fuzz targets: writes fuzz bytes to a file in a private temporary
 // directory (one per process, made once), so that the loaders under test run
 // their real file paths.
-#include <stdlib.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -11,17 +9,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "tests/scoped_temp_dir.h"
+
 namespace pd_fuzz {
 
-// The process's private directory (mkdtemp under $TMPDIR or /tmp).
+// The process's private directory (under $TMPDIR or /tmp), removed at exit.
 inline const std::string& TempDir() {
-  static const std::string dir = [] {
-    const char* base = getenv("TMPDIR");
-    std::string pattern = std::string(base != nullptr ? base : "/tmp") + "/pd_fuzz_XXXXXX";
-    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed: " + pattern);
-    return pattern;
-  }();
-  return dir;
+  static const pd::test::ScopedTempDir dir("pd_fuzz");
+  static const std::string path = dir.path().string();
+  return path;
 }
 
 // Writes `size` bytes to TempDir()/name and returns the path.

@@ -3,7 +3,6 @@
 // YAML), pose samples, and file helpers.
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -14,6 +13,7 @@
 #include "haptics/scene/load_scene_config.h"
 #include "haptics/io/pose_sample.h"
 #include "haptics/scene/scene_config.h"
+#include "tests/scoped_temp_dir.h"
 
 namespace haptics::test {
 
@@ -64,15 +64,6 @@ inline PoseSample MakePose(int64_t seq, const Vector3& p_WD,
   s.p_WD = p_WD;
   s.q_WD = q_WD;
   return s;
-}
-
-// A fresh empty directory under the system temp dir.
-inline std::filesystem::path MakeTempDir(const std::string& tag) {
-  static std::mt19937_64 rng(std::random_device{}());
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("haptics_test_" + tag + "_" + std::to_string(rng()));
-  std::filesystem::create_directories(dir);
-  return dir;
 }
 
 inline void WriteFile(const std::filesystem::path& path, const std::string& text) {

@@ -51,11 +51,8 @@ servo:
 class ConfigTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = test::MakeTempDir("config");
     test::WriteFile(dir_ / "dev.yaml", kDevice);
   }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string Write(const std::string& scene, const std::string& from = "", const std::string& to = "") {
     const fs::path path = dir_ / "scene.yaml";
     test::WriteFile(path, test::Edited(scene, from, to));
@@ -71,7 +68,8 @@ class ConfigTest : public ::testing::Test {
     test::ExpectConfigError(path, key, parts);
   }
 
-  fs::path dir_;
+  pd::test::ScopedTempDir tmp_{"haptics_test_config"};
+  const fs::path dir_ = tmp_.path();
 };
 
 TEST_F(ConfigTest, ValidSceneLoadsWithDefaults) {

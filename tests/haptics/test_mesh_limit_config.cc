@@ -3,6 +3,7 @@
 // a bad value is a ConfigError naming the key and the range.
 #include <gtest/gtest.h>
 
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,7 +21,10 @@ namespace fs = std::filesystem;
 // config/box_on_box.yaml with its table replaced by `table_shape`, written
 // into a fresh directory next to a 12-triangle cube.obj and config/devices.
 std::string SceneWithTable(const std::string& table_shape) {
-  const fs::path dir = test::MakeTempDir("mesh_limit");
+  // One directory per scene (the error messages name its path); all removed
+  // at exit.
+  static std::deque<pd::test::ScopedTempDir> dirs;
+  const fs::path dir = dirs.emplace_back("haptics_test_mesh_limit").path();
   fs::create_directory_symlink(test::ConfigDir() + "/devices", dir / "devices");
   test::WriteFile(dir / "cube.obj",
                   "v -5 -5 -5\nv 5 -5 -5\nv -5 5 -5\nv 5 5 -5\nv -5 -5 5\nv 5 -5 5\nv -5 5 5\nv 5 5 5\n"

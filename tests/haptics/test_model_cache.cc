@@ -52,16 +52,14 @@ void ExpectSameModel(const pd::CollisionModel& a, const pd::CollisionModel& b) {
 
 class ModelCacheTest : public ::testing::Test {
  protected:
-  void SetUp() override { dir_ = test::MakeTempDir("model_cache"); }
-  void TearDown() override { fs::remove_all(dir_); }
-
   static pd::TriangleMesh Torus() { return pd::MakeTorus(0.03, 0.01, 24, 12); }
 
   std::shared_ptr<const pd::CollisionModel> Cached(pd::TriangleMesh mesh, pd::ModelCacheReport* r) {
     return pd::BuildCollisionModelCached(std::move(mesh), dir_.string(), r);
   }
 
-  fs::path dir_;
+  pd::test::ScopedTempDir tmp_{"haptics_test_model_cache"};
+  const fs::path dir_ = tmp_.path();
 };
 
 TEST_F(ModelCacheTest, CachedModelEqualsTheFreshlyBuiltOneAndGivesTheSameAnswers) {

@@ -198,15 +198,12 @@ TEST(ScenePrimitives, EachPairUsesTheCheapestMethodForItsKinds) {
 class ShapeConfigTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = test::MakeTempDir("shapes");
     scene_ = test::ConfigDir() + "/primitives_only.yaml";
     fs::create_directories(dir_ / "devices");
     fs::copy_file(test::ConfigDir() + "/devices/sigma7.yaml", dir_ / "devices/sigma7.yaml");
     std::ifstream in(scene_);
     text_.assign((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // primitives_only.yaml with `from` replaced by `to`, written into dir_.
   std::string Write(const std::string& from, const std::string& to) {
     const fs::path path = dir_ / "scene.yaml";
@@ -218,7 +215,8 @@ class ShapeConfigTest : public ::testing::Test {
     test::ExpectConfigError(path, path + ": " + key, parts);
   }
 
-  fs::path dir_;
+  pd::test::ScopedTempDir tmp_{"haptics_test_shapes"};
+  const fs::path dir_ = tmp_.path();
   std::string scene_, text_;
 };
 

@@ -1,7 +1,6 @@
 #include "pd_core/mesh/load_mesh.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -13,6 +12,7 @@
 
 #include "pd_core/geometry/make_shapes.h"
 #include "tests/prerequisites.h"
+#include "tests/scoped_temp_dir.h"
 
 namespace pd {
 namespace {
@@ -25,22 +25,14 @@ const std::string kAssimpModels = PD_ASSIMP_MODELS_DIR;
 // Per-test scratch directory (tests may run as parallel processes).
 class LoadMeshTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("pd_load_mesh_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string Write(const std::string& name, const std::string& contents) {
     const std::string path = (dir_ / name).string();
     std::ofstream(path, std::ios::binary) << contents;
     return path;
   }
 
-  fs::path dir_;
+  pd::test::ScopedTempDir tmp_{"pd_load_mesh"};
+  const fs::path dir_ = tmp_.path();
 };
 
 std::string Off(const std::vector<Vector3>& v, const std::vector<std::vector<int>>& faces) {

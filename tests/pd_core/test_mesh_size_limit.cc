@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <string>
 
 #include "pd_core/mesh/load_mesh.h"
+#include "tests/scoped_temp_dir.h"
 
 namespace pd {
 namespace {
@@ -21,9 +21,7 @@ namespace fs = std::filesystem;
 
 // Writes `header` and extends the file to `size` bytes without writing them.
 std::string SparseFile(const std::string& name, const std::string& header, uintmax_t size) {
-  static const fs::path dir = fs::temp_directory_path() /
-                              ("pd_mesh_limit_" + std::to_string(std::random_device{}()));
-  fs::create_directories(dir);
+  static const pd::test::ScopedTempDir dir("pd_mesh_limit");  // removed at exit
   const fs::path path = dir / name;
   std::ofstream(path, std::ios::binary) << header;
   fs::resize_file(path, size);

@@ -52,7 +52,7 @@ haptics_msgs::probe_pose_t Pose(int64_t seq, int64_t utime, double z, int64_t se
 }
 
 TEST(TrajectoryLcmLog, ReadsPoseChannelOnly) {
-  const std::string path = ::testing::TempDir() + "probes_tests_poses.lcmlog";
+  const std::string path = TempPath("poses.lcmlog");
   {
     lcm::LogFile log(path, "w");
     ASSERT_TRUE(log.good());
@@ -72,7 +72,7 @@ TEST(TrajectoryLcmLog, ReadsPoseChannelOnly) {
 }
 
 TEST(TrajectoryLcmLog, UndecodablePoseNamesEvent) {
-  const std::string path = ::testing::TempDir() + "probes_tests_bad.lcmlog";
+  const std::string path = TempPath("bad.lcmlog");
   {
     lcm::LogFile log(path, "w");
     WriteEvent(&log, "PROBE_POSE", Encode(Pose(1, 10, 0.1)));
@@ -88,7 +88,7 @@ TEST(TrajectoryLcmLog, UndecodablePoseNamesEvent) {
 }
 
 TEST(TrajectoryLcmLog, MissingChannelListsWhatIsThere) {
-  const std::string path = ::testing::TempDir() + "probes_tests_nopose.lcmlog";
+  const std::string path = TempPath("nopose.lcmlog");
   {
     lcm::LogFile log(path, "w");
     WriteEvent(&log, "LCM_SELF_TEST", {0});
@@ -104,7 +104,7 @@ TEST(TrajectoryLcmLog, MissingChannelListsWhatIsThere) {
 }
 
 TEST(TrajectoryLcmLog, NonIncreasingUtimeIsAnError) {
-  const std::string path = ::testing::TempDir() + "probes_tests_time.lcmlog";
+  const std::string path = TempPath("time.lcmlog");
   {
     lcm::LogFile log(path, "w");
     WriteEvent(&log, "PROBE_POSE", Encode(Pose(1, 10, 0.1)));
@@ -114,7 +114,7 @@ TEST(TrajectoryLcmLog, NonIncreasingUtimeIsAnError) {
 }
 
 TEST(TrajectoryLcmLog, AVersionOneLogIsRejectedNamingTheConverter) {
-  const std::string path = ::testing::TempDir() + "probes_tests_v1.lcmlog";
+  const std::string path = TempPath("v1.lcmlog");
   {
     lcm::LogFile log(path, "w");
     haptics_msgs::probe_pose_v1_t old{};
@@ -135,7 +135,7 @@ TEST(TrajectoryLcmLog, AVersionOneLogIsRejectedNamingTheConverter) {
 }
 
 TEST(TrajectoryLcmLog, ALogOfTwoSendersNeedsOneChosen) {
-  const std::string path = ::testing::TempDir() + "probes_tests_two_senders.lcmlog";
+  const std::string path = TempPath("two_senders.lcmlog");
   {
     lcm::LogFile log(path, "w");
     // Interleaved, as a log recorded while two clients published looks.
@@ -162,8 +162,8 @@ TEST(TrajectoryLcmLog, ALogOfTwoSendersNeedsOneChosen) {
 }
 
 TEST(LogUpgrade, AVersionOneLogConvertedReadsBackWithTheSameMotion) {
-  const std::string old_path = ::testing::TempDir() + "probes_tests_upgrade_v1.lcmlog";
-  const std::string new_path = ::testing::TempDir() + "probes_tests_upgrade_v2.lcmlog";
+  const std::string old_path = TempPath("upgrade_v1.lcmlog");
+  const std::string new_path = TempPath("upgrade_v2.lcmlog");
   const std::vector<uint8_t> wrench_bytes = Encode(haptics_msgs::wrench_t{});
   {
     lcm::LogFile log(old_path, "w");
@@ -215,7 +215,7 @@ TEST(LogUpgrade, AVersionOneLogConvertedReadsBackWithTheSameMotion) {
 }
 
 TEST(LogUpgrade, GarbageOnThePoseChannelIsAnErrorNamingTheEvent) {
-  const std::string old_path = ::testing::TempDir() + "probes_tests_upgrade_bad.lcmlog";
+  const std::string old_path = TempPath("upgrade_bad.lcmlog");
   {
     lcm::LogFile log(old_path, "w");
     WriteEvent(&log, "PROBE_POSE", {1, 2, 3});
