@@ -99,6 +99,15 @@ std::vector<KnobConfig> SweepConfigs() {
     k.options.num_iterated_starts_bounded = d.num_iterated_starts;
     out.push_back(k);
   }
+  // A probe held still under a 1 ms budget after a cold query: what the
+  // queries after it (which go on with the search the budget cut) answer
+  // after 1, 3 and 10 of them. Times are the sum over the queries.
+  for (int held : {1, 3, 10}) {
+    KnobConfig k{Label("max_time_us_1000_held", held), d};
+    k.options.max_time_us = 1000.0;
+    k.held_queries = held;
+    out.push_back(k);
+  }
   out.push_back({"default", d, true, true});
   KnobConfig cold{"warm_start=off", d, true};
   cold.options.warm_start = false;
@@ -140,8 +149,11 @@ std::vector<SweepRow> RunSweep(const PairResult& pair, const std::vector<KnobCon
         std::vector<Case> cases;
         for (size_t i = 0; i < s.cases.size(); ++i)
           if (mask[i]) cases.push_back(s.cases[i].c);
-        const std::vector<PdOutcome> ran = RunPolyDepth(
-            pair.pair, cases, k.options, s.scenario != Scenario::kRandom, progress);
+        const std::vector<PdOutcome> ran =
+            k.held_queries > 0
+                ? RunHeldPolyDepth(pair.pair, cases, k.options, k.held_queries, progress)
+                : RunPolyDepth(pair.pair, cases, k.options, s.scenario != Scenario::kRandom,
+                               progress);
         outcomes.resize(s.cases.size());
         for (size_t i = 0, j = 0; i < s.cases.size(); ++i)
           if (mask[i]) outcomes[i] = ran[j++];

@@ -15,6 +15,9 @@ struct KnobConfig {
   pd::PolyDepthOptions options;
   bool coherent_scenarios = false; // run on path/shallow (else on random)
   bool is_default = false;         // same as the main run: reuse its answers
+  // Random cases only: each pose solved this many more times after the
+  // cold query, coherent (a probe held still; RunHeldPolyDepth).
+  int held_queries = 0;
 };
 
 std::vector<KnobConfig> SweepConfigs();

@@ -52,4 +52,30 @@ std::vector<PdOutcome> RunPolyDepth(const BenchPair& pair, const std::vector<Cas
   return out;
 }
 
+std::vector<PdOutcome> RunHeldPolyDepth(const BenchPair& pair, const std::vector<Case>& cases,
+                                        const pd::PolyDepthOptions& options, int held_queries,
+                                        Progress* progress) {
+  const pd::Isometry3 X_WS = ScenePose(pair);
+  std::vector<PdOutcome> out;
+  out.reserve(cases.size());
+  for (const Case& c : cases) {
+    pd::PolyDepthSolver solver(pair.probe->model, pair.scene->model, options);
+    pd::PenetrationResult r = solver.Solve(c.X_WP, X_WS);
+    double time_us = r.time_us, box_tests = r.box_tests, triangle_tests = r.triangle_tests;
+    for (int k = 0; k < held_queries; ++k) {
+      r = solver.Solve(c.X_WP, X_WS, true);
+      time_us += r.time_us;
+      box_tests += r.box_tests;
+      triangle_tests += r.triangle_tests;
+    }
+    PdOutcome o = Check(pair, c, X_WS, r);
+    o.time_us = time_us;
+    o.box_tests = box_tests;
+    o.triangle_tests = triangle_tests;
+    out.push_back(o);
+    if (progress) progress->Tick();
+  }
+  return out;
+}
+
 }  // namespace pd_bench

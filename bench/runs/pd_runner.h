@@ -16,4 +16,13 @@ std::vector<PdOutcome> RunPolyDepth(const BenchPair& pair, const std::vector<Cas
                                     const pd::PolyDepthOptions& options, bool coherent,
                                     Progress* progress);
 
+// A probe held still after a cold query: each case solved cold on a fresh
+// solver, then `held_queries` more times at the same pose, coherent (a
+// bounded cold query's follow-up goes on in them: PolyDepthOptions::
+// max_time_us). out[i] is the last answer, checked, with the time and
+// work of all the case's queries.
+std::vector<PdOutcome> RunHeldPolyDepth(const BenchPair& pair, const std::vector<Case>& cases,
+                                        const pd::PolyDepthOptions& options, int held_queries,
+                                        Progress* progress);
+
 }  // namespace pd_bench

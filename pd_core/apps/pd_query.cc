@@ -35,13 +35,16 @@ Output (stdout): one JSON object per pose line, in order:
   {"collision", "valid", "depth", "translation": [x,y,z], "normal": [x,y,z],
    "iterations", "contacts", "regions": [{"point", "normal", "local_depth"}],
    "initializer", "converged", "list_builds", "list_build_us", "starts",
-   "iterated_starts", "box_tests", "triangle_tests", "time_us"}
+   "iterated_starts", "cold_probes_resumed", "box_tests", "triangle_tests",
+   "time_us"}
 all vectors in W, lengths in metres; translation moves the probe out of
 collision; time_us is solver time only; starts, box_tests and triangle_tests
 are the query's cold starts and work (machine-independent cost);
 iterated_starts the starts it iterated (searches of the contact space); converged
 is false when --max-work or --max-time-us stopped the search early (the
-answer is still verified free);
+answer is still verified free); cold_probes_resumed is true on a --coherent
+line that went on with what such a budget cut from an earlier line's cold
+search (its starts and probes; the following lines go on until it is done);
 list_builds counts the --coherent query's rebuilds of its list of leaf pairs
 near the contact (0 when cold), list_build_us is their share of time_us. A malformed line (wrong number of
 fields, not a number, NaN/inf, quaternion norm not within 1e-3 of 1) gives
@@ -75,6 +78,7 @@ nlohmann::ordered_json ToJson(const pd::PenetrationResult& r) {
           {"list_build_us", r.list_build_us},
           {"starts", r.starts},
           {"iterated_starts", r.iterated_starts},
+          {"cold_probes_resumed", r.cold_probes_resumed},
           {"box_tests", r.box_tests},
           {"triangle_tests", r.triangle_tests},
           {"time_us", r.time_us}};

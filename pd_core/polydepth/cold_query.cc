@@ -1,7 +1,7 @@
 // A cold query (Solve's step 2): the support-plane (maximally clear) and
 // centroid starts landed on the contact space, the closest iterated, then
-// the shell and inner probes for shallower basins, and a final polish of the
-// best answer's local model.
+// the shell and inner probes for shallower basins (cold_probes.cc), and a
+// final polish of the best answer's local model.
 #include <algorithm>
 #include <random>
 
@@ -15,17 +15,6 @@ namespace {
 // A cold query ranks the best num_maximally_clear of at least this many
 // support-plane directions.
 constexpr int kMinSupportDirections = 48;
-// PolyDepthOptions::cold_shell_probes: probed at this fraction of the best
-// answer's length (0.995 against 0.98 and 0.99, with one iterated start:
-// 0.57 against 0.71 and 0.65% mean |error| on bench_pd's random scenario,
-// the same time; 0.998 the same as 0.995), and the first this many free
-// ones iterated (2, 4 or 8: the same answers; a free shell probe is rare,
-// 0.1 per query).
-constexpr double kShellRadius = 0.995;
-constexpr int kShellIterated = 4;
-// Directions of PolyDepthOptions::cold_deep_probes (96 against 48 or 192:
-// the same torus-knot error as 192 at three quarters of its work).
-constexpr int kDeepProbeDirections = 96;
 // Under a budget, a cold query's landings stop once this share of the
 // search's part of it (kSearchShare) is spent (with one landed): the rest
 // iterates the closest landing. On 24
@@ -65,6 +54,17 @@ void PolyDepthSolver::Impl::ColdQuery(const ModelPair& pair, const PolyDepthOpti
     Vector3 u(gauss(rng), gauss(rng), gauss(rng));
     if (u.norm() < 1e-9) continue;
     starts.push_back({SupportPlaneTranslation(pair, u.normalized()), Initializer::kRandom});
+  }
+  // Their directions, for what a budget-stopped query leaves to the next
+  // ones (cold_probes.cc).
+  cold_probes.Reset(1);
+  cold_probes.start_dirs.clear();
+  cold_probes.start_origins.clear();
+  cold_probes.iterated.clear();
+  for (Start& st : starts) {
+    st.index = static_cast<int>(cold_probes.start_dirs.size());
+    cold_probes.start_dirs.push_back(st.q_S.normalized());
+    cold_probes.start_origins.push_back(st.origin);
   }
   // Out-project every start once, then iterate from the closest few.
   // Once num_iterated starts have landed, a start's CCD stops as soon as
@@ -142,44 +142,29 @@ void PolyDepthSolver::Impl::ColdQuery(const ModelPair& pair, const PolyDepthOpti
     if (i > 0 && starts[i].contact_norm > (1.0 + opt.cold_start_gate) * best_norm) break;
     // After the first, a start stops once it cannot beat the best answer.
     StartAbandon abandon(best_norm);
+    cold_probes.iterated.push_back(starts[i].index);
     EndStart(Iterate(pair, screen_options, size, starts[i].contact_q_S, starts[i].origin,
                      i > 0 && opt.cold_abandon ? &abandon : nullptr));
   }
+  // Bounded, the landings may have stopped early and fewer starts are
+  // iterated: the following queries land and iterate them (stage 0).
+  const bool starts_left =
+      Bounded() && (landings_cut || stopped_early || num_iterated < opt.num_iterated_starts);
   if (screen && best_origin != Initializer::kNone && !OutOfBudget())
     EndStart(Iterate(pair, opt, size, best_q_S, best_origin));
-  // Probes from the inside: free configurations shallower than the best
-  // answer, out-projected toward the query and iterated like the others.
-  auto iterate_inner_starts = [&] {
-    for (const Vector3& q0 : inner_starts) {
-      if (OutOfBudget()) break;
-      bool touched = false;
-      ++result->starts;
-      const Vector3 q_c = OutProject(pair, q0, Vector3::Zero(), margin, &touched);
-      if (!touched) continue;
-      StartAbandon abandon(best_norm);
-      EndStart(Iterate(pair, opt, size, q_c, Initializer::kMaximallyClear,
-                       opt.cold_abandon ? &abandon : nullptr));
+  // Probes from the inside for shallower basins: the shell just inside the
+  // answer, then pockets deeper inside it (cold_probes.cc). What the budget
+  // cut, the following coherent queries go on with: the starts first if
+  // any were left (and then the probes again from the beginning, at their
+  // answer), else the probes where they stopped.
+  inner_starts.clear();
+  if (best_origin != Initializer::kNone) {
+    cold_probes.pending = !RunColdProbes(pair, opt, result);
+    if (starts_left) {
+      inner_starts.clear();
+      cold_probes.Reset(0);
+      cold_probes.pending = true;
     }
-  };
-  // The shell: the other basins just shallower than the answer.
-  if (opt.cold_shell_probes > 0 && best_origin != Initializer::kNone && !OutOfBudget()) {
-    inner_starts.clear();
-    InnerProbeStarts(pair, best_norm, opt.cold_shell_probes, {kShellRadius}, kShellIterated,
-                     &inner_starts, stop_ccd);
-    iterate_inner_starts();
-  }
-  // Then deeper inside the (possibly shallower) answer: pockets.
-  if (opt.cold_inner_probes > 0 && best_origin != Initializer::kNone && !OutOfBudget()) {
-    // Deeper fractions first: the first free ones are the most promising.
-    inner_starts.clear();
-    InnerProbeStarts(pair, best_norm, opt.cold_inner_probes, {0.7, 0.9}, 2, &inner_starts,
-                     stop_ccd);
-    // Deeper still, on a denser set of directions, after those (which
-    // they must not displace: see cold_deep_probes).
-    if (opt.cold_deep_probes > 0)
-      InnerProbeStarts(pair, best_norm, kDeepProbeDirections, {0.3, 0.5}, opt.cold_deep_probes,
-                       &inner_starts, stop_ccd);
-    iterate_inner_starts();
   }
   // The best answer's local model may put its optimum a little shorter
   // than where its start stopped: within convergence_tol, a fraction of

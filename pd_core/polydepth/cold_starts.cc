@@ -27,20 +27,26 @@ bool StartAbandon::Update(double norm) {
   return stop;
 }
 
-void InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions,
+bool InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions,
                       std::initializer_list<double> fractions, int max_out,
-                      std::vector<Vector3>* out_S, const std::function<bool()>& stop) {
-  int found = 0;
-  for (double f : fractions) {
-    for (int i = 0; i < num_directions; ++i) {
-      if (found >= max_out || (stop && stop())) return;
-      const Vector3 q = f * best_norm * FibonacciDirection(i, num_directions);
+                      std::vector<Vector3>* out_S, const std::function<bool()>& stop,
+                      ProbeCursor* cursor) {
+  ProbeCursor from_start;
+  ProbeCursor& c = cursor != nullptr ? *cursor : from_start;
+  const int num_fractions = static_cast<int>(fractions.size());
+  for (; c.fraction < num_fractions; ++c.fraction, c.direction = 0) {
+    const double f = fractions.begin()[c.fraction];
+    for (; c.direction < num_directions; ++c.direction) {
+      if (c.found >= max_out) return true;
+      if (stop && stop()) return false;
+      const Vector3 q = f * best_norm * FibonacciDirection(c.direction, num_directions);
       if (!InCollisionExpectingDepth(pair, q)) {
         out_S->push_back(q);
-        ++found;
+        ++c.found;
       }
     }
   }
+  return true;
 }
 
 }  // namespace pd

@@ -28,6 +28,14 @@ class StartAbandon {
   double last_ = -1.0, last_drop_ = -1.0;
 };
 
+// Where InnerProbeStarts stopped: the fraction and direction it probes
+// next, and the free probes it has found.
+struct ProbeCursor {
+  int fraction = 0;
+  int direction = 0;
+  int found = 0;
+};
+
 // Free configurations shallower than the best answer so far: the probe
 // moved by r * u for num_directions Fibonacci directions u and r = each of
 // `fractions` of best_norm (m), in that order. Out-projected toward the
@@ -36,10 +44,13 @@ class StartAbandon {
 // max_out free ones are appended to *out_S. `stop`, if set, is asked before
 // each probe's collision test; true ends the probing there (a bounded
 // query's budget is spent: 256 shell probes cost about a third of a
-// millisecond on 6k-triangle pairs).
-void InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions,
+// millisecond on 6k-triangle pairs) and returns false. With `cursor` the
+// probing starts where the cursor says and leaves it where it stopped (a
+// later call goes on from there). True once every direction is probed or
+// max_out free ones are found.
+bool InnerProbeStarts(const ModelPair& pair, double best_norm, int num_directions,
                       std::initializer_list<double> fractions, int max_out,
-                      std::vector<Vector3>* out_S,
-                      const std::function<bool()>& stop = nullptr);
+                      std::vector<Vector3>* out_S, const std::function<bool()>& stop = nullptr,
+                      ProbeCursor* cursor = nullptr);
 
 }  // namespace pd

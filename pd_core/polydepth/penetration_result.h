@@ -65,6 +65,10 @@ struct PenetrationResult {
   // led to a shorter answer in another basin, which this query returns.
   int basin_probes = 0;
   bool basin_switched = false;
+  // A coherent query that went on with the probes for shallower basins of
+  // a cold query its budget had stopped (PolyDepthOptions::max_time_us,
+  // max_work): the rest of that cold search, where it stopped.
+  bool cold_probes_resumed = false;
   // Times the answer was found inside a pocket of free space thinner than
   // PolyDepthOptions::pocket_thickness (it is moved out of the pocket when a
   // free configuration with room beyond is found within 16x the contact

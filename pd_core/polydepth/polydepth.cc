@@ -41,6 +41,11 @@ PolyDepthSolver::PolyDepthSolver(std::shared_ptr<const CollisionModel> probe,
   impl_->joined.reserve(1024);
   impl_->earlier.reserve(1024);
   impl_->starts.reserve(128);
+  impl_->cold_probes.start_dirs.reserve(128);
+  impl_->cold_probes.start_origins.reserve(128);
+  impl_->cold_probes.iterated.reserve(16);
+  impl_->cold_probes.landed.reserve(128);
+  impl_->inner_starts.reserve(64);
   impl_->trail.reserve(512);
   impl_->qp.unique.reserve(1024);
   impl_->qp.lambda.reserve(1024);
@@ -74,6 +79,7 @@ void PolyDepthSolver::ResetWarmStart() {
   impl_->has_previous_replaced = false;
   impl_->anchor_depth = 0.0;
   impl_->check_next = -1;
+  impl_->cold_probes.pending = false;
   impl_->has_previous = false;
   impl_->has_previous_free = false;
 }
@@ -159,6 +165,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
     s.previous_constraints.clear();
     s.anchor_depth = 0.0;
     s.check_next = -1;
+    s.cold_probes.pending = false;
     return finish();
   }
   s.best_norm = 1e300;
@@ -180,11 +187,14 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   result.warm_start_failed = moved_from_previous && !warm_found;
   // 2. Cold starts: the fallback when coherence found nothing (cold_query.cc).
   // 2b-2e. Otherwise cross-checks of the coherent answer for shallower
-  // basins (coherence_checks.cc).
-  if (!warm_found)
+  // basins (coherence_checks.cc), and 2f. the probes of a cold query the
+  // budget stopped, where it stopped (cold_probes.cc).
+  if (!warm_found) {
     s.ColdQuery(pair, options_, &result);
-  else
+  } else {
     s.CheckCoherentAnswer(pair, options_, &result);
+    s.ResumeColdProbes(pair, options_, &result);
+  }
 
   // 3. Verify; fall back to a dense directional search if needed (not when
   // the budget is spent: then the answer is reported invalid instead).

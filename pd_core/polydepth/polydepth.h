@@ -202,6 +202,14 @@ struct PolyDepthOptions {
   // 0.85-0.88 and 2.1-2.6 ms and mean errors (averaged over the pairs) of
   // 9.9 and 1.8% (10.5 and 1.9% at 0ef5ba2; before the 85%: 1.00-1.04 and
   // 2.0-3.1 ms, 8.2 and 1.6%).
+  // What such a cold query's budget cut (the landings left, the starts
+  // beyond num_iterated_starts_bounded, the shell, inner and deep probes)
+  // the following coherent queries of the pair go on with, where it stopped
+  // and at their own pose, with the budget their warm update leaves
+  // (PenetrationResult::cold_probes_resumed), until it is complete: a caller
+  // that holds the budget (the haptic server's geometry thread) gets the
+  // whole cold search within a few queries. A free query or
+  // ResetWarmStart drops what is left.
   int64_t max_work = 0;
   double max_time_us = 0.0;
   // Answer first, rebuild the list after: a warm query whose list no longer

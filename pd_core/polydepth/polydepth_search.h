@@ -72,6 +72,7 @@ struct PolyDepthSolver::Impl {
     Initializer origin;
     double contact_norm = 0.0;  // |q| after the first out-projection
     Vector3 contact_q_S = Vector3::Zero();
+    int index = -1;  // in the query's list of starts (ColdProbes::start_dirs)
   };
   std::vector<ContactConstraint> constraints;
   MinNormScratch qp;
@@ -79,6 +80,56 @@ struct PolyDepthSolver::Impl {
   std::vector<double> landed_norms;  // cold: landing norms of the starts out-projected exactly
   std::vector<SupportPlaneStart> support_starts;
   std::vector<Vector3> inner_starts;  // cold: free probes below the best answer
+  // What a cold query leaves to the following coherent queries when its
+  // budget stops it (cold_probes.cc): its starts (landed again at the
+  // query's pose, the closest ones it did not iterate iterated), then its
+  // probes for shallower basins (the shell, then pockets), each a stage
+  // that probes its sets of directions into inner_starts and then
+  // iterates the free probes found. Any stage can stop and a later query
+  // go on where it stopped.
+  struct ColdProbes {
+    bool pending = false;  // the next coherent queries go on
+    int stage = 0;         // stage under way (0: the starts, 1: shell, 2: pockets)
+    // The starts: the query's start directions (unit, S) and initializers,
+    // those it iterated, and the landings of this stage (|q|, index), once
+    // all landed sorted nearest first and iterated from next_iterated.
+    std::vector<Vector3> start_dirs;
+    std::vector<Initializer> start_origins;
+    std::vector<int> iterated;
+    std::vector<std::pair<double, int>> landed;
+    size_t next_landing = 0;
+    bool landings_sorted = false;
+    size_t next_iterated = 0;
+    // The probes.
+    int set = 0;          // the stage's probe set under way (while probing)
+    ProbeCursor cursor;   // where that set's probing stopped
+    bool probed = false;  // the stage's probing is done: iterating its free probes
+    size_t next = 0;      // next of inner_starts to iterate
+    size_t earlier = 0;   // inner_starts[0, earlier) were found by an earlier query
+    // Back to the first stage, keeping the vectors' storage.
+    void Reset(int first_stage) {
+      pending = false;
+      stage = first_stage;
+      landed.clear();
+      next_landing = next_iterated = 0;
+      landings_sorted = false;
+      ResetProbes();
+    }
+    void ResetProbes() {
+      set = 0;
+      cursor = ProbeCursor{};
+      probed = false;
+      next = earlier = 0;
+    }
+  } cold_probes;
+  // Runs the stages from where cold_probes says until all are done (true,
+  // pending cleared) or the budget stops them (false).
+  bool RunColdProbes(const ModelPair& pair, const PolyDepthOptions& opt,
+                     PenetrationResult* result);
+  // Stage 0 of RunColdProbes: the starts, landed again and the closest
+  // the cold query did not iterate iterated.
+  bool RestOfColdStarts(const ModelPair& pair, const PolyDepthOptions& opt,
+                        PenetrationResult* result);
   std::mt19937_64 rng;
   CandidatePairs candidates;           // leaf pairs near the last contact (warm start)
   LeafPairRecord record;               // leaf pairs near the last recorded out-projection
@@ -326,6 +377,9 @@ struct PolyDepthSolver::Impl {
   void ColdQuery(const ModelPair& pair, const PolyDepthOptions& opt, PenetrationResult* result);
   void CheckCoherentAnswer(const ModelPair& pair, const PolyDepthOptions& opt,
                            PenetrationResult* result);
+  // Goes on with the probes of a budget-stopped cold query (cold_probes.cc).
+  void ResumeColdProbes(const ModelPair& pair, const PolyDepthOptions& opt,
+                        PenetrationResult* result);
   void EscapePocket(const ModelPair& pair, const PolyDepthOptions& opt, PenetrationResult* result);
   // The fallback when no start gave a verified answer: out-projections
   // from num_sampling_directions support-plane configurations, the closest

@@ -11,12 +11,12 @@
 #include <string>
 
 #include "pd_core/geometry/make_shapes.h"
-#include "pd_core/mesh/load_mesh.h"
 #include "pd_core/polydepth/cold_starts.h"
 #include "pd_core/polydepth/polydepth.h"
 #include "pd_core/proximity/mesh_collision.h"
 #include "pd_core/proximity/model_pair.h"
 #include "pd_core/reference/reference_pd.h"
+#include "tests/pd_core/normalised_mesh.h"
 #include "tests/prerequisites.h"
 
 namespace pd {
@@ -25,16 +25,7 @@ namespace {
 using Model = std::shared_ptr<const CollisionModel>;
 const std::string kMeshDir = PD_TEST_MESH_DIR;
 
-// A libcgal-demo mesh scaled to a 0.1 m bounding sphere about its box centre
-// (as the benchmark does), times `extra_scale`.
-TriangleMesh LoadNormalised(const std::string& name, double extra_scale = 1.0) {
-  TriangleMesh mesh = LoadMesh(kMeshDir + "/" + name).mesh;
-  const MeshBounds b = ComputeBounds(mesh);
-  double r = 0.0;
-  for (const Vector3& v : mesh.vertices) r = std::max(r, (v - b.center()).norm());
-  for (Vector3& v : mesh.vertices) v *= extra_scale * 0.1 / r;
-  return mesh;
-}
+using test::LoadNormalised;
 
 // The benchmark's random scenario: random orientation, probe box centre at
 // U[0.1, 0.8] scene radii from the scene's, colliding poses only.

@@ -391,6 +391,42 @@ elseif(CASE STREQUAL "cold_knobs")
     expect_contains("${ERR}" "${flag}" "usage error for '${bad}'")
   endforeach()
 
+elseif(CASE STREQUAL "cold_follow_up")
+  # The same pose on three --coherent lines under a budget: a bounded cold
+  # query iterates one start, and the next line goes on with the rest of the
+  # cold search (the other starts, the probes), saying so; with a budget it
+  # never reaches, that line completes it and the third has nothing left.
+  # Without a budget nothing is left to go on with. Every answer is valid
+  # and none deeper than the line before.
+  set(input "0.8 0.05 0.02 ${QZ45}\n0.8 0.05 0.02 ${QZ45}\n0.8 0.05 0.02 ${QZ45}\n")
+  foreach(budget ON OFF)
+    if(budget)
+      run_pd_query("${input}" "${BOX}" "${BOX}" --coherent --max-work 1000000000)
+      set(expected OFF ON OFF)
+    else()
+      run_pd_query("${input}" "${BOX}" "${BOX}" --coherent)
+      set(expected OFF OFF OFF)
+    endif()
+    expect_equal("${RC}" 0 "exit code (budget ${budget})")
+    set(previous 1e9)
+    foreach(line 1 2 3)
+      json_get(valid "${LINE_${line}}" valid)
+      expect_equal("${valid}" ON "line ${line} valid (budget ${budget})")
+      json_get(resumed "${LINE_${line}}" cold_probes_resumed)
+      math(EXPR i "${line} - 1")
+      list(GET expected ${i} want)
+      expect_equal("${resumed}" "${want}" "line ${line} cold_probes_resumed (budget ${budget})")
+      json_get(depth "${LINE_${line}}" depth)
+      # To 1e-9 m (a warm query's answer is re-localised: round-off); the
+      # depths here are below 1 m ("0." and nine digits).
+      string(SUBSTRING "${depth}" 0 11 depth_nm)
+      if(depth_nm GREATER previous)
+        fail("line ${line}: depth ${depth} deeper than the line before (${previous})")
+      endif()
+      set(previous ${depth_nm})
+    endforeach()
+  endforeach()
+
 elseif(CASE STREQUAL "coherent")
   # Depth = 1 - x on every line, answered cold by default and warm-started
   # with --coherent.
