@@ -11,8 +11,12 @@
 //                              the previous answer, restarts near it;
 //   coherence_checks.cc        steps 2b-2e: cross-checks of a coherent answer
 //                              and its neighbour basins;
-//   cold_query.cc              step 2: support-plane starts, shell and inner
-//                              probes; and the sampling-search fallback;
+//   cold_query.cc              step 2: support-plane starts, landed and the
+//                              closest iterated; and the sampling-search
+//                              fallback;
+//   cold_probes.cc             step 2's shell, inner and deep probes, and
+//                              step 2f: what a budget cut from a cold query,
+//                              gone on with by the following coherent ones;
 //   pocket_escape.cc           step 3a: out of thin free pockets.
 // They share out_projection.h (the CCD move), contact_constraints.h
 // (localisation), min_norm_point.h (in-projection), support_plane_starts.h
