@@ -112,21 +112,17 @@ bool PolyDepthSolver::Impl::RestOfColdStarts(const ModelPair& pair, const PolyDe
   for (; p.next_landing < p.start_dirs.size(); ++p.next_landing) {
     if (OutOfBudget()) return false;
     ++result->starts;
-    const Vector3 q = SupportPlaneTranslation(pair, p.start_dirs[p.next_landing]);
-    const double len = q.norm();
     double threshold = gate * best_norm;
     if (num_iterated > 0 && p.landed.size() >= num_iterated) {
       std::nth_element(p.landed.begin(), p.landed.begin() + (num_iterated - 1), p.landed.end());
       threshold = std::min(threshold, p.landed[num_iterated - 1].first);
     }
-    // Landing at s lies (1 - s + margin / len) |q| from the query (OutProject).
-    const double s_stop = 1.0 + margin / len - threshold / len - 1e-9;
-    if (s_stop >= 1.0) continue;
-    if (s_stop > 0.0 && InCollisionExpectingDepth(pair, (1.0 - s_stop) * q)) continue;
-    bool touched = false, exact = true;
-    const Vector3 q_c =
-        OutProject(pair, q, Vector3::Zero(), margin, &touched, s_stop > 0.0 ? s_stop : -1.0, &exact);
-    if (touched && exact) p.landed.push_back({q_c.norm(), static_cast<int>(p.next_landing)});
+    Vector3 q_c;
+    bool exact = true;
+    if (LandStart(pair, margin, SupportPlaneTranslation(pair, p.start_dirs[p.next_landing]),
+                  threshold, &q_c, &exact) &&
+        exact)
+      p.landed.push_back({q_c.norm(), static_cast<int>(p.next_landing)});
   }
   if (!p.landings_sorted) {
     std::sort(p.landed.begin(), p.landed.end());

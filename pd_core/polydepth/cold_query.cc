@@ -85,40 +85,21 @@ void PolyDepthSolver::Impl::ColdQuery(const ModelPair& pair, const PolyDepthOpti
     }
     st.contact_norm = 1e300;
     ++result->starts;
-    const double len = st.q_S.norm();
-    double s_stop = -1.0;
-    if (len > 0.0 && num_iterated > 0 && !landed_norms.empty()) {
+    double threshold = 1e300;
+    if (num_iterated > 0 && !landed_norms.empty()) {
       // A landing farther than the num_iterated-th closest so far, or
       // than cold_start_gate above the closest (it lands above the best
       // answer by more than the gate: not iterated), needs no exact
       // landing point.
-      double threshold = (1.0 + opt.cold_start_gate) * best_landing;
+      threshold = (1.0 + opt.cold_start_gate) * best_landing;
       if (static_cast<int>(landed_norms.size()) >= num_iterated) {
         std::nth_element(landed_norms.begin(), landed_norms.begin() + (num_iterated - 1),
                          landed_norms.end());
         threshold = std::min(threshold, landed_norms[num_iterated - 1]);
       }
-      // Landing at s lies (1 - s + margin / len) |q_S| from the query
-      // (OutProject); contacts before s_stop land farther than the
-      // threshold (by a relative 1e-9, against round-off).
-      s_stop = 1.0 + margin / len - threshold / len - 1e-9;
     }
-    // Colliding where it would land at the threshold, it lands farther:
-    // out of the running, settled by a collision test (~140 tests) instead
-    // of a sweep from outside the models (~1k). Same answers; on 24 random
-    // cases of 13 real pairs the cold median -40-53% (cow_cow 6.2 -> 3.7
-    // ms, dragon_dragon 12.8 -> 6.0 ms). No collision witness: the last
-    // direction's intersecting pair and its neighbours (16 triangle tests)
-    // never intersect along the next (1.9% fewer tests without). The
-    // models' inner spheres settle most of these (and the inner probes'
-    // tests) before any BVH test: same answers on 24 random cases of 13
-    // real pairs, collision work -33-65%, medians -5-24% (a mesh that is
-    // not closed has no spheres: dragon_dragon unchanged).
-    if (s_stop > 0.0 && s_stop < 1.0 && InCollisionExpectingDepth(pair, (1.0 - s_stop) * st.q_S))
-      continue;
-    bool touched = false, exact = true;
-    st.contact_q_S = OutProject(pair, st.q_S, Vector3::Zero(), margin, &touched, s_stop, &exact);
-    if (!touched) continue;
+    bool exact = true;
+    if (!LandStart(pair, margin, st.q_S, threshold, &st.contact_q_S, &exact)) continue;
     st.contact_norm = st.contact_q_S.norm();
     if (!exact) continue;
     landed_norms.push_back(st.contact_norm);
@@ -200,6 +181,35 @@ void PolyDepthSolver::Impl::SamplingSearch(const ModelPair& pair, const PolyDept
     if (touched && q_c.norm() < best_landing) best_landing = q_c.norm(), best_contact = q_c;
   }
   if (best_landing < 1e300) Iterate(pair, opt, size, best_contact, Initializer::kSamplingSearch);
+}
+
+bool PolyDepthSolver::Impl::LandStart(const ModelPair& pair, double margin, const Vector3& q_S,
+                                      double threshold, Vector3* q_c, bool* exact) {
+  // Landing at s lies (1 - s + margin / len) |q_S| from the query
+  // (OutProject); contacts before s_stop land farther than the threshold
+  // (by a relative 1e-9, against round-off).
+  const double len = q_S.norm();
+  const double s_stop =
+      len > 0.0 && threshold < 1e300 ? 1.0 + margin / len - threshold / len - 1e-9 : -1.0;
+  // (Never for a threshold that is a landing: landings lie at least the
+  // margin from the query.)
+  if (s_stop >= 1.0) return false;
+  // Colliding where it would land at the threshold, it lands farther:
+  // out of the running, settled by a collision test (~140 tests) instead
+  // of a sweep from outside the models (~1k). Same answers; on 24 random
+  // cases of 13 real pairs the cold median -40-53% (cow_cow 6.2 -> 3.7
+  // ms, dragon_dragon 12.8 -> 6.0 ms). No collision witness: the last
+  // direction's intersecting pair and its neighbours (16 triangle tests)
+  // never intersect along the next (1.9% fewer tests without). The
+  // models' inner spheres settle most of these (and the inner probes'
+  // tests) before any BVH test: same answers on 24 random cases of 13
+  // real pairs, collision work -33-65%, medians -5-24% (a mesh that is
+  // not closed has no spheres: dragon_dragon unchanged).
+  if (s_stop > 0.0 && InCollisionExpectingDepth(pair, (1.0 - s_stop) * q_S)) return false;
+  bool touched = false;
+  *exact = true;
+  *q_c = OutProject(pair, q_S, Vector3::Zero(), margin, &touched, s_stop, exact);
+  return touched;
 }
 
 }  // namespace pd

@@ -126,6 +126,13 @@ struct PolyDepthSolver::Impl {
       next = earlier = 0;
     }
   } cold_probes;
+  // Lands the start q_S (free, m) on the contact space toward the query
+  // (OutProject) unless it cannot land closer than `threshold` (m; 1e300:
+  // no threshold), which a collision test settles for most such starts.
+  // True with the landing in *q_c when it touched; *exact false when the
+  // CCD stopped at a contact farther than the threshold.
+  bool LandStart(const ModelPair& pair, double margin, const Vector3& q_S, double threshold,
+                 Vector3* q_c, bool* exact);
   // Runs the stages from where cold_probes says until all are done (true,
   // pending cleared) or the budget stops them (false).
   bool RunColdProbes(const ModelPair& pair, const PolyDepthOptions& opt,
