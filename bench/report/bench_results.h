@@ -67,6 +67,11 @@ struct CaseRecord {
   PdOutcome pd;
   bool has_ref = false;
   RefOutcome ref;
+  // The reference again at the run's heavier check settings (a sample of
+  // the random scenario's reference cases): how far the reference itself is
+  // from converged.
+  bool has_ref_check = false;
+  RefOutcome ref_check;
   bool has_fcl = false;
   FclOutcome fcl;
 };
@@ -107,6 +112,11 @@ struct RunSettings {
   int large_tris = 0;
   int ref_directions = 0, ref_refine_iterations = 0, ref_refine_starts = 0;
   int ref_threads = 1;
+  // Per small pair, this many of the random scenario's reference cases are
+  // solved again by a heavier reference (directions, refinement evaluations
+  // and starts below): the reference's own convergence, in the report.
+  int ref_check_random = 0;
+  int ref_check_directions = 0, ref_check_refine_iterations = 0, ref_check_refine_starts = 0;
   int fcl_cases = 0;        // per scenario, on top of the reference subset
   int sweep_cases = 0;      // per scenario, on top of the reference subset
   int fcl_max_contacts = 0;
@@ -161,6 +171,11 @@ struct HapticStep {
   bool fcl_collide = false;
   bool has_ref = false;
   RefOutcome ref;
+  // The reference again at the run's heavier check settings (a sample of
+  // the random scenario's reference cases): how far the reference itself is
+  // from converged.
+  bool has_ref_check = false;
+  RefOutcome ref_check;
   // The same pose solved by a second warm-started solver with the time
   // budget (RunSettings::haptic_budget_us); has_budget false when not run.
   bool has_budget = false;

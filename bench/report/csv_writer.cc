@@ -46,7 +46,8 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
          "ref_depth_m,ref_time_ms,ref_directions,ref_check_pd_free,ref_answer_free,pd_rel_error,"
          "fcl_convex_collide,fcl_convex_depth_m,fcl_convex_time_us,fcl_convex_rel_error,"
          "fcl_mesh_collide,fcl_mesh_depth_m,fcl_mesh_time_us,fcl_mesh_contacts,"
-         "fcl_mesh_rel_error,pd_box_tests,pd_triangle_tests," << kWorkColumns << "\n";
+         "fcl_mesh_rel_error,pd_box_tests,pd_triangle_tests," << kWorkColumns
+      << ",ref_check_depth_m,ref_check_directions\n";
     for (const PairResult& p : run.pairs)
       for (const ScenarioResult& s : p.scenarios)
         for (const CaseRecord& r : s.cases) {
@@ -73,7 +74,10 @@ std::vector<std::string> WriteCsvFiles(const BenchRun& run, const std::string& d
             f << ",,,,,,,,,";
           f << Num(r.pd.box_tests) << ',' << Num(r.pd.triangle_tests) << ',';
           WriteWork(f, r.pd.work);
-          f << '\n';
+          if (r.has_ref_check)
+            f << ',' << Num(r.ref_check.depth) << ',' << r.ref_check.directions << '\n';
+          else
+            f << ",,\n";
         }
   }
   {

@@ -231,6 +231,38 @@ void ResultsSection(const BenchRun& run, std::ostream& md) {
   md << "\n";
 }
 
+// How far the reference itself is from converged: a sample of its random
+// cases solved again at heavier settings (RunSettings::ref_check_random).
+void ReferenceCheckSection(const BenchRun& run, std::ostream& md) {
+  const RunSettings& st = run.settings;
+  if (st.ref_check_random <= 0) return;
+  md << "## The reference checked by a heavier one\n\n"
+     << st.ref_check_random << " of each small pair's random reference cases (spread evenly) "
+        "solved again by the reference at "
+     << st.ref_check_directions << " directions, " << st.ref_check_refine_starts
+     << " refinement starts x " << st.ref_check_refine_iterations
+     << " evaluations (the run's reference: " << st.ref_directions << ", "
+     << st.ref_refine_starts << " x " << st.ref_refine_iterations
+     << "). Both are upper bounds on the true PD: *reference above the check* = (ref - check) / "
+        "check is how much the reference itself missed on these cases (a lower bound on its "
+        "error). PolyDepth's |error| on the same cases against each.\n\n"
+        "| Pair | Cases | reference above the check: mean / max | check shorter by > 0.1% | "
+        "PolyDepth \\|err\\| vs reference: mean / max | vs check: mean / max | check time median |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (const PairResult& p : run.pairs) {
+    const ScenarioResult* s = Find(p, Scenario::kRandom);
+    if (s == nullptr) continue;
+    const ScenarioSummary m = Summarize(*s);
+    if (m.n_ref_check == 0) continue;
+    md << "| " << p.pair.name << " | " << m.n_ref_check << " | " << Pct(m.ref_over_check.mean)
+       << " / " << Pct(m.ref_over_check.max) << " | " << m.n_check_below_ref << " | "
+       << Pct(m.abs_error_on_check_cases.mean) << " / " << Pct(m.abs_error_on_check_cases.max)
+       << " | " << Pct(m.abs_error_vs_check.mean) << " / " << Pct(m.abs_error_vs_check.max)
+       << " | " << F(m.ref_check_time_ms.median / 1000.0, 1) << " s |\n";
+  }
+  md << "\n";
+}
+
 void BaselinesSection(const BenchRun& run, std::ostream& md) {
   md << "## Baselines on the same cases\n\n"
         "Time ratio = median baseline time / median PolyDepth time on the same cases (> 1: "
@@ -557,6 +589,7 @@ void WriteMarkdownReport(const BenchRun& run, const std::string& path,
   ModelsSection(run, md);
   HapticSection(run, md);
   ResultsSection(run, md);
+  ReferenceCheckSection(run, md);
   BaselinesSection(run, md);
   PaperSection(run, md);
   SweepSection(run, md);

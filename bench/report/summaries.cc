@@ -70,6 +70,7 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
   std::vector<double> starts, iterated_starts, boxes, triangles;
   std::vector<pd::PenetrationResult::Work> works;
   std::vector<double> times, iterations, contacts, errors, excess, ref_ms, ref_pd_us;
+  std::vector<double> ref_over_check, error_on_check_cases, error_vs_check, check_ms;
   int valid = 0, verified = 0, ref_free = 0;
   for (const CaseRecord& r : s.cases) {
     if (!r.c.colliding) continue;
@@ -99,6 +100,14 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
     excess.push_back(std::max(0.0, e));  // (d - min(d, ref)) / min(d, ref)
     if (e < 0) excess.back() = 0.0;
     out.n_below_ref += e < -1e-6;
+    if (!r.has_ref_check || !(r.ref_check.depth > 0)) continue;
+    ++out.n_ref_check;
+    const double over = RelativeError(r.ref.depth, r.ref_check.depth);
+    ref_over_check.push_back(over);
+    out.n_check_below_ref += over > 1e-3;
+    error_on_check_cases.push_back(std::abs(e));
+    error_vs_check.push_back(std::abs(RelativeError(r.pd.depth, r.ref_check.depth)));
+    check_ms.push_back(r.ref_check.time_ms);
   }
   out.time_us = pd_bench::Summarize(times);
   out.mean_iterations = Mean(iterations);
@@ -118,6 +127,10 @@ ScenarioSummary Summarize(const ScenarioResult& s) {
   out.abs_error_mean_ci = BootstrapMeanInterval(Abs(errors));
   out.signed_mean_error = e.signed_mean;
   out.excess = pd_bench::Summarize(excess);
+  out.ref_over_check = pd_bench::Summarize(ref_over_check);
+  out.abs_error_on_check_cases = pd_bench::Summarize(error_on_check_cases);
+  out.abs_error_vs_check = pd_bench::Summarize(error_vs_check);
+  out.ref_check_time_ms = pd_bench::Summarize(check_ms);
   out.ref_time_ms = pd_bench::Summarize(ref_ms);
   out.ref_time_ratio = out.ref_time_ms.median * 1000.0 / Percentile(ref_pd_us, 50);
   out.fcl_convex = SummarizeBaseline(

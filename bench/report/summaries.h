@@ -49,6 +49,15 @@ struct ScenarioSummary {
   // (depth - best) / best with best = min(depth, ref): PolyDepth's overshoot
   // beyond the best escape either method found, blind to a weak reference.
   Summary excess;
+  // The reference checked by a heavier one (RunSettings::ref_check_random):
+  // (ref - check) / check, a lower bound on the reference's own error; the
+  // cases where the check came out shorter by more than 0.1%; PolyDepth's
+  // |error| on those cases against each.
+  int n_ref_check = 0;
+  Summary ref_over_check;
+  int n_check_below_ref = 0;
+  Summary abs_error_on_check_cases, abs_error_vs_check;
+  Summary ref_check_time_ms;
   Summary ref_time_ms;
   double ref_time_ratio = kNaN;  // reference / PolyDepth, on the reference cases
   BaselineSummary fcl_convex, fcl_mesh;

@@ -25,8 +25,13 @@ std::vector<int> Subset(const ScenarioResult& s, int k) {
   return idx;
 }
 
+// Above st.large_tris triangles in all: fewer reference cases, no check.
+bool IsLarge(const BenchPair& pair, const RunSettings& st) {
+  return pair.probe->triangles + pair.scene->triangles > st.large_tris;
+}
+
 int RefCount(const BenchPair& pair, const RunSettings& st, Scenario s) {
-  const bool large = pair.probe->triangles + pair.scene->triangles > st.large_tris;
+  const bool large = IsLarge(pair, st);
   switch (s) {
     case Scenario::kRandom: return large ? st.ref_random_large : st.ref_random;
     case Scenario::kPath: return large ? st.ref_path_large : st.ref_path;
@@ -126,6 +131,27 @@ PairResult RunPair(const BenchPair& pair, const RunSettings& st) {
         jobs.push_back({&r.c, r.pd.translation_W, &r.ref});
       }
     RunReference(pair, jobs, st, &bar);
+  }
+
+  // The reference's own convergence: a sample of the random scenario's
+  // reference cases again at the heavier check settings (small pairs only:
+  // a large pair's reference takes a minute a case already).
+  for (size_t k = 0; k < out.scenarios.size() && !IsLarge(pair, st) && st.ref_check_random > 0;
+       ++k) {
+    if (out.scenarios[k].scenario != Scenario::kRandom) continue;
+    const std::vector<int>& refs = ref_idx[k];
+    std::vector<RefJob> jobs;
+    for (int j : SpreadIndices(static_cast<int>(refs.size()), st.ref_check_random)) {
+      CaseRecord& r = out.scenarios[k].cases[refs[j]];
+      r.has_ref_check = true;
+      jobs.push_back({&r.c, r.pd.translation_W, &r.ref_check});
+    }
+    pd::ReferencePdOptions options;
+    options.num_directions = st.ref_check_directions;
+    options.refine_iterations = st.ref_check_refine_iterations;
+    options.num_refine_starts = st.ref_check_refine_starts;
+    Progress bar(tag + "reference check", static_cast<int>(jobs.size()));
+    RunReference(pair, jobs, options, st.ref_threads, &bar);
   }
   return out;
 }

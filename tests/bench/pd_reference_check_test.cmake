@@ -1,0 +1,64 @@
+# bench_pd checks its own reference: --ref-check N of each small pair's
+# random reference cases are solved again by a reference at 4x the
+# directions, 4x the evaluations per refinement start and 2x the starts
+# (pd_cases.csv's ref_check_depth_m and ref_check_directions), and the
+# report's "checked by a heavier one" table gives how far the reference was
+# above the check and PolyDepth's error against each. --ref-check 0: none.
+cmake_policy(SET CMP0007 NEW)  # keep the CSV's empty fields as list elements
+include(${CMAKE_CURRENT_LIST_DIR}/bench_pd_script.cmake)
+file(REMOVE_RECURSE "${OUT}")
+
+# Rows of the CSV with a check; each must be a reference case, and the check
+# must have evaluated its 384 sphere directions plus at most 8 x 128
+# refinement evaluations.
+function(check_rows csv expected)
+  read_csv("${csv}" c scenario ref_depth_m ref_check_depth_m ref_check_directions)
+  set(n 0)
+  foreach(line IN LISTS c_rows)
+    string(REPLACE "," ";" f "${line}")
+    list(GET f ${c_ref_check_depth_m} check)
+    if(check STREQUAL "")
+      continue()
+    endif()
+    math(EXPR n "${n} + 1")
+    list(GET f ${c_scenario} scenario)
+    list(GET f ${c_ref_depth_m} ref)
+    list(GET f ${c_ref_check_directions} dirs)
+    if(NOT scenario STREQUAL "random" OR ref STREQUAL "")
+      message(FATAL_ERROR "${csv}: a check on a case that is not a random reference case: ${line}")
+    endif()
+    if(dirs LESS 384 OR dirs GREATER 1408)
+      message(FATAL_ERROR "${csv}: the check evaluated ${dirs} directions, expected 384-1408: ${line}")
+    endif()
+    # Two upper bounds on the same case's PD, both a real depth (the models'
+    # bounding spheres have radius 0.1 m).
+    if(NOT check GREATER 0 OR NOT check LESS 0.2)
+      message(FATAL_ERROR "${csv}: check ${check} m (reference ${ref} m): ${line}")
+    endif()
+  endforeach()
+  if(NOT n EQUAL ${expected})
+    message(FATAL_ERROR "${csv}: expected ${expected} checked rows, got ${n}")
+  endif()
+endfunction()
+
+run_bench_pd(${OUT}/check --quick --scenarios random --pairs torus_knot_3k --random-cases 6
+             --ref-random 3 --ref-check 2 --no-sweep)
+check_rows("${OUT}/check/pd_cases.csv" 2)
+file(READ "${OUT}/check/pd_speed_error.md" md)
+if(NOT md MATCHES "## The reference checked by a heavier one")
+  message(FATAL_ERROR "pd_speed_error.md lacks the reference check section")
+endif()
+if(NOT md MATCHES "384 directions, 8 refinement starts x 128 evaluations \\(the run's reference: 96, 4 x 32\\)")
+  message(FATAL_ERROR "pd_speed_error.md does not state the check's settings (384, 8 x 128)")
+endif()
+if(NOT md MATCHES "\\| torus_knot_3k \\| 2 \\| [0-9.-]+% / [0-9.-]+% \\| [0-2] \\| [0-9.]+% / [0-9.]+% \\| [0-9.]+% / [0-9.]+% \\| [0-9.]+ s \\|")
+  message(FATAL_ERROR "pd_speed_error.md: no check row with 2 cases for torus_knot_3k")
+endif()
+
+run_bench_pd(${OUT}/none --quick --scenarios random --pairs torus_knot_3k --random-cases 6
+             --ref-random 1 --ref-check 0 --no-sweep)
+check_rows("${OUT}/none/pd_cases.csv" 0)
+file(READ "${OUT}/none/pd_speed_error.md" md)
+if(md MATCHES "checked by a heavier one")
+  message(FATAL_ERROR "pd_speed_error.md has a reference check section with --ref-check 0")
+endif()
