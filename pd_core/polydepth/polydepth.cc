@@ -97,6 +97,8 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   pair.recorded = &s.record;
   s.front.Invalidate();  // within a query only (descent_front.h)
   pair.front = &s.front;
+  s.intersection_hint.Invalidate();  // within a query only, like the front
+  pair.intersection_hint = &s.intersection_hint;
   s.counters = ProximityCounters{};
   pair.counters = &s.counters;
   s.work_limit = options_.max_work;

@@ -145,6 +145,7 @@ struct PolyDepthSolver::Impl {
   CandidatePairs candidates;           // leaf pairs near the last contact (warm start)
   LeafPairRecord record;               // leaf pairs near the last recorded out-projection
   DescentFront front;                  // where the last full descent ended
+  IntersectionHint intersection_hint;  // where the last probe's surfaces crossed
   bool list_follows_iterates = false;  // this query may still move the list to an iterate
   // PolyDepthOptions::defer_list_builds: the list being built in
   // PrepareNext (it replaces `candidates` once complete), and the build the

@@ -12,6 +12,7 @@ namespace pd {
 
 class CandidatePairs;
 class DescentFront;
+struct IntersectionHint;
 struct LeafPairRecord;
 
 struct ModelPair {
@@ -29,6 +30,10 @@ struct ModelPair {
   // test) ended (descent_front.h); the next one near there starts there and
   // replaces it.
   DescentFront* front = nullptr;
+  // Optional: where the last of a series of collision tests expecting depth
+  // found its surfaces crossing (mesh_collision.h); the next one looks
+  // there first and moves it.
+  IntersectionHint* intersection_hint = nullptr;
   // Optional cost accounting of the queries on this pair.
   ProximityCounters* counters = nullptr;
   // Optional: asked during a CCD's best-first descent; true ends it early
