@@ -12,32 +12,11 @@ function(run_bench label)
   run_bench_pd(${OUT}/${label} ${ARGN} --mesh-dir ${MESH_DIR})
 endfunction()
 
-# The CSV's rows with a reference must be exactly `expected` and each must
-# have evaluated between `lo` and `hi` directions (its sphere, then at most
-# 4 refinement starts x 32 evaluations at --quick).
-function(check_ref_directions csv expected lo hi)
-  read_csv("${csv}" c ref_directions ref_depth_m)
-  set(refs 0)
-  foreach(line IN LISTS c_rows)
-    string(REPLACE "," ";" f "${line}")
-    list(GET f ${c_ref_depth_m} depth)
-    if(depth STREQUAL "")
-      continue()
-    endif()
-    math(EXPR refs "${refs} + 1")
-    list(GET f ${c_ref_directions} dirs)
-    if(dirs LESS ${lo} OR dirs GREATER ${hi})
-      message(FATAL_ERROR "${csv}: the reference evaluated ${dirs} directions, expected ${lo}-${hi}: ${line}")
-    endif()
-  endforeach()
-  if(NOT refs EQUAL ${expected})
-    message(FATAL_ERROR "${csv}: expected ${expected} reference rows, got ${refs}")
-  endif()
-endfunction()
-
 run_bench(random --quick --scenarios random --pairs torus_knot_3k --random-cases 2 --ref-random 1
           --no-sweep --ref-directions 300)
-check_ref_directions("${OUT}/random/pd_cases.csv" 1 300 428)
+# One reference row, its 300 directions then at most 4 refinement starts x
+# 32 evaluations (--quick).
+rows_with("${OUT}/random/pd_cases.csv" ref_depth_m ref_directions 300 428 1 rows)
 file(READ "${OUT}/random/pd_speed_error.md" md)
 if(NOT md MATCHES "300 Fibonacci directions, 4 refinement starts x 32 evaluations")
   message(FATAL_ERROR "pd_speed_error.md does not state the reference's settings (300 x 32)")
@@ -50,7 +29,7 @@ endif()
 # The haptic reference: its own 96 directions (quick), whatever --ref-directions.
 run_bench(haptic --quick --haptic-ref 1 --haptic-more-paths 0 --haptic-budget-us 0
           --pairs knot1_camel --ref-directions 300)
-check_ref_directions("${OUT}/haptic/pd_haptic.csv" 1 96 224)
+rows_with("${OUT}/haptic/pd_haptic.csv" ref_depth_m ref_directions 96 224 1 rows)
 file(READ "${OUT}/haptic/pd_haptic.md" md)
 if(NOT md MATCHES "no hint \\(96 directions, 4 refinement starts x 32 evaluations\\)")
   message(FATAL_ERROR "pd_haptic.md: the haptic reference did not state its own settings (96 x 32)")
