@@ -18,12 +18,18 @@ foreach(line IN LISTS c_rows)
     list(GET pair_of_columns 1 ic)
     list(GET f ${iw} wall)
     list(GET f ${ic} cpu)
-    # CPU time is part of the wall time (its read, a system call, adds ~1 us).
+    # CPU time is part of the wall time (its read, a system call, adds ~1 us),
+    # up to the disagreement of the two clocks: on this KVM guest (kvm-clock,
+    # TSC marked unstable) the thread CPU clock ran ahead of CLOCK_MONOTONIC by
+    # up to 106 us over single 0.1-1 ms intervals (150k intervals with two
+    # busy loops beside; up to 74 us with no context switch), and this check
+    # failed at 50 us under ctest -j2. 250 us still catches a wrong unit or
+    # interval (the deferred rebuild after Solve runs to the 1 ms pose period).
     if(NOT cpu MATCHES "^[0-9]" OR cpu LESS_EQUAL 0)
       message(FATAL_ERROR "no CPU time in: ${line}")
     endif()
     string(REGEX REPLACE "\\..*" "" wall_int "${wall}")
-    math(EXPR limit "${wall_int} + 50")
+    math(EXPR limit "${wall_int} + 250")
     if(cpu GREATER ${limit})
       message(FATAL_ERROR "CPU time ${cpu} us above the wall time ${wall} us it is part of: ${line}")
     endif()
