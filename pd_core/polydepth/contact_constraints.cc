@@ -81,7 +81,7 @@ bool Localise(const ModelPair& pair, const Vector3& q_S, double distance, bool t
 
   const auto& tris_P = pair.P.mesh().triangles;
   const auto& tris_S = pair.S.mesh().triangles;
-  ProbeBoxMemo probe_box(pair.X_SP, q_S);
+  ProbeBoxMemo probe_box(pair.X_SP, q_S, pair.probe_boxes, pair.P.bvh().nodes().data());
   PlacedProbeTriangles placed(pair, q_S);
   ForEachLeafPairNear(
       pair, q_S, q_S, reach,

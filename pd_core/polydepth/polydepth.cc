@@ -99,6 +99,10 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   pair.front = &s.front;
   s.intersection_hint.Invalidate();  // within a query only, like the front
   pair.intersection_hint = &s.intersection_hint;
+  s.probe_boxes.Invalidate();
+  pair.probe_boxes = &s.probe_boxes;
+  s.inner_spheres.Invalidate();
+  pair.inner_spheres = &s.inner_spheres;
   s.counters = ProximityCounters{};
   pair.counters = &s.counters;
   s.work_limit = options_.max_work;

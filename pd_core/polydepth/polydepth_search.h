@@ -30,6 +30,8 @@
 #include <vector>
 
 #include "pd_core/polydepth/cold_starts.h"
+#include "pd_core/proximity/box_overlap.h"
+#include "pd_core/proximity/inner_sphere_overlap.h"
 #include "pd_core/polydepth/contact_constraints.h"
 #include "pd_core/polydepth/min_norm_point.h"
 #include "pd_core/polydepth/polydepth.h"
@@ -146,6 +148,8 @@ struct PolyDepthSolver::Impl {
   LeafPairRecord record;               // leaf pairs near the last recorded out-projection
   DescentFront front;                  // where the last full descent ended
   IntersectionHint intersection_hint;  // where the last probe's surfaces crossed
+  ProbeBoxCache probe_boxes;
+  PlacedInnerSpheres inner_spheres;  // the pair's inner spheres at this query's rotation  // the probe node boxes at this query's rotation
   bool list_follows_iterates = false;  // this query may still move the list to an iterate
   // PolyDepthOptions::defer_list_builds: the list being built in
   // PrepareNext (it replaces `candidates` once complete), and the build the

@@ -59,7 +59,7 @@ bool LeafPairsIntersect(const ModelPair& pair, const Vector3& offset_S,
                         PlacedProbeTriangles& placed, CollisionWitness* witness, int32_t root_P,
                         int32_t root_S, int32_t* leaf_P, int32_t* leaf_S) {
   bool hit = false;
-  ProbeBoxMemo probe_box(pair.X_SP, offset_S);
+  ProbeBoxMemo probe_box(pair.X_SP, offset_S, pair.probe_boxes, pair.P.bvh().nodes().data());
   auto test = [&](const BvhNode& a, const BvhNode& b, double* key) {
     return NodesWithin(probe_box(a), a, b, 0.0, key);  // deepest overlap first
   };

@@ -10,6 +10,9 @@
 
 namespace pd {
 
+class ProbeBoxCache;
+class PlacedInnerSpheres;
+
 class CandidatePairs;
 class DescentFront;
 struct IntersectionHint;
@@ -34,6 +37,12 @@ struct ModelPair {
   // found its surfaces crossing (mesh_collision.h); the next one looks
   // there first and moves it.
   IntersectionHint* intersection_hint = nullptr;
+  // Optional: the probe's node boxes rotated into S (box_overlap.h), for
+  // this pair's pose only.
+  ProbeBoxCache* probe_boxes = nullptr;
+  // Optional: the pair's inner spheres placed at this pair's rotation
+  // (inner_sphere_overlap.h).
+  PlacedInnerSpheres* inner_spheres = nullptr;
   // Optional cost accounting of the queries on this pair.
   ProximityCounters* counters = nullptr;
   // Optional: asked during a CCD's best-first descent; true ends it early

@@ -87,7 +87,8 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
     });
   };
   const CandidatePairs* list = pair.candidates;
-  ProbeBoxMemo probe_box(pair.X_SP, offset_S);
+  const SweepInS sweep(sweep_S);
+  SweptProbeBoxMemo probe_box(pair.X_SP, offset_S, sweep, pair.probe_boxes, bvh_P.nodes().data());
   const double covered = list ? list->CoveredFraction(pair, offset_S, sweep_S, 0.0) : -1.0;
   // The part of the sweep the list has shown contact-free: the descent
   // below looks past it only (the pairs in contact at the start, which the
@@ -97,7 +98,7 @@ double FirstContactAlongTranslation(const ModelPair& pair, const Vector3& offset
   // The node test of every walk and descent here: the swept boxes (grown by
   // `grow`) may meet in [s_min, s_best], from `*key` on.
   auto may_meet = [&](const BvhNode& a, const BvhNode& b, double* key) {
-    if (!SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, &lo, &hi, grow, s_min))
+    if (!SweptBoxContactInterval(probe_box(a), b, sweep, s_best, &lo, &hi, grow, s_min))
       return false;
     *key = lo;
     return true;

@@ -1,10 +1,15 @@
-// The first test of a node pair (pd_core/proximity/box_overlap.h): the
-// boxes' axis-aligned bounds in the scene frame S. A pair it calls apart
-// must be apart; checked against bounds built here from the boxes' 8
-// corners, over random boxes, rotations and distances.
+// Node-pair tests (pd_core/proximity/box_overlap.h) and the placed probe
+// boxes they take (placed_probe_boxes.h), over random boxes, rotations and
+// distances: the boxes' axis-aligned bounds in the scene frame S call a pair
+// apart exactly when bounds built here from the boxes' 8 corners are apart;
+// the per-query cache of placed boxes gives ProbeBox's boxes; the swept
+// test keeps every time at which the 15 separating axes find the boxes
+// overlapping.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <random>
+#include <vector>
 
 #include "pd_core/proximity/box_overlap.h"
 
@@ -74,6 +79,74 @@ TEST(BoxOverlap, AxisAlignedBoundsCallAPairApartExactlyWhenTheirCornersAreApart)
   // Both verdicts were exercised.
   EXPECT_GT(apart, 500);
   EXPECT_GT(near, 500);
+}
+
+// The per-query table of placed probe boxes (placed_probe_boxes.h) gives
+// ProbeBox's boxes bit for bit, at any translation, for nodes that share a
+// slot, and after Invalidate the new pose's boxes, never the old ones.
+TEST(BoxOverlap, ProbeBoxCacheGivesProbeBoxsBoxesAndForgetsAnOldPose) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> c(-1.0, 1.0);
+  std::vector<BvhNode> nodes;
+  for (int k = 0; k < 3000; ++k) nodes.push_back(RandomBox(rng));  // 3 nodes per slot
+  auto cache = std::make_unique<ProbeBoxCache>();
+  for (int pose = 0; pose < 3; ++pose) {
+    RelativePose X_SP;
+    X_SP.R_SP = RandomRotation(rng);
+    X_SP.p_SP = Vector3(c(rng), c(rng), c(rng));
+    X_SP.absR_SP = X_SP.R_SP.cwiseAbs().array() + 1e-12;
+    cache->Invalidate();
+    for (int k = 0; k < 20000; ++k) {
+      const int32_t index = std::uniform_int_distribution<int32_t>(0, 2999)(rng);
+      const Vector3 offset_S(c(rng), c(rng), c(rng));
+      const ProbeBoxInS got = cache->Get(nodes[index], index, X_SP, offset_S);
+      const ProbeBoxInS want = ProbeBox(nodes[index], X_SP, offset_S);
+      ASSERT_TRUE(got.R_SA == want.R_SA) << "pose " << pose << " node " << index;
+      ASSERT_TRUE(got.p_SA == want.p_SA) << "pose " << pose << " node " << index;
+      ASSERT_TRUE(got.aabb_half_S == want.aabb_half_S) << "pose " << pose << " node " << index;
+      ASSERT_EQ(got.half_A, want.half_A);
+      ASSERT_EQ(got.radius, want.radius);
+    }
+  }
+}
+
+// The swept test never drops a time at which the boxes overlap: at sampled
+// times s the boxes moved by s * sweep overlap by the 15 separating axes
+// (exact for boxes), and there the swept test must keep the pair with s in
+// its interval. Random boxes, rotations and sweeps, some along an axis (a
+// zero component of the sweep) and some of zero length.
+TEST(BoxOverlap, SweptIntervalHoldsEveryTimeTheBoxesOverlap) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> c(-1.0, 1.0);
+  int overlapping_times = 0, rejected = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const BvhNode node_a = RandomBox(rng), b = RandomBox(rng);
+    RelativePose X_SP;
+    X_SP.R_SP = RandomRotation(rng);
+    X_SP.p_SP = Vector3(c(rng), c(rng), c(rng));
+    X_SP.absR_SP = X_SP.R_SP.cwiseAbs().array() + 1e-12;
+    Vector3 sweep_S = 4.0 * Vector3(c(rng), c(rng), c(rng));
+    if (trial % 5 == 1) sweep_S.y() = 0.0;
+    if (trial % 50 == 2) sweep_S.setZero();
+    const Vector3 offset_S = -0.5 * sweep_S;
+    const SweepInS sweep(sweep_S);
+    SweptProbeBoxMemo memo(X_SP, offset_S, sweep);
+    const double s_min = trial % 3 == 0 ? 0.25 : 0.0, s_max = trial % 4 == 0 ? 0.7 : 1.0;
+    double lo = 0, hi = 0;
+    const bool kept = SweptBoxContactInterval(memo(node_a), b, sweep, s_max, &lo, &hi, 0.0, s_min);
+    rejected += !kept;
+    for (int k = 0; k <= 200; ++k) {
+      const double s = s_min + (s_max - s_min) * k / 200.0;
+      const ProbeBoxInS a = ProbeBox(node_a, X_SP, offset_S + s * sweep_S);
+      if (BoxGapLowerBound(a, b) > -1e-9) continue;  // apart, or too near to call
+      ++overlapping_times;
+      ASSERT_TRUE(kept) << "trial " << trial << " overlap at s = " << s;
+      EXPECT_LE(lo, s + 1e-9) << "trial " << trial;
+      EXPECT_GE(hi, s - 1e-9) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(overlapping_times, 20000);
+  EXPECT_GT(rejected, 300);  // the test does reject pairs
 }
 
 }  // namespace

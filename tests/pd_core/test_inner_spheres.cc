@@ -156,5 +156,53 @@ TEST(InnerSphereOverlap, ProvesOnlyCollisionsAndMostDeepOnesOnARealPair) {
   EXPECT_LT(work_certified, work_plain / 2) << work_certified << " vs " << work_plain;
 }
 
+// The placed spheres a solver keeps per query (PlacedInnerSpheres) give the
+// verdict of a brute force over every sphere pair, written here, and count
+// the probe spheres they placed as the unplaced check does; a new pose after
+// Invalidate is placed again (a stale placement would give the old pose's
+// verdicts).
+TEST(InnerSphereOverlap, PlacedSpheresGiveTheBruteForceVerdictAtEachPose) {
+  REQUIRE_MESH("cow.off");
+  REQUIRE_MESH("hand.off");
+  Model cow = Real("cow.off");
+  Model hand = Real("hand.off");
+  ASSERT_FALSE(cow->inner_spheres().empty());
+  ASSERT_FALSE(hand->inner_spheres().empty());
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double reach = cow->radius() + hand->radius();
+  PlacedInnerSpheres placed;
+  int overlapping = 0, apart = 0;
+  for (int i = 0; i < 60; ++i) {
+    const Quaternion R_WP = test::RandomRotation(rng);
+    const Vector3 p_W = hand->center() + 0.5 * reach * Vector3(u(rng), u(rng), u(rng)) -
+                        R_WP.toRotationMatrix() * cow->center();
+    ModelPair pair(*cow, *hand, test::Pose(p_W, R_WP), Isometry3::Identity());
+    placed.Invalidate();
+    for (int k = 0; k < 10; ++k) {
+      const Vector3 offset_S = 0.3 * reach * Vector3(u(rng), u(rng), u(rng));
+      bool truth = false;
+      for (const InnerSphere& a : cow->inner_spheres()) {
+        const Vector3 p_SA = pair.X_SP.R_SP * a.p_MC + pair.X_SP.p_SP + offset_S;
+        for (const InnerSphere& b : hand->inner_spheres())
+          truth |= (p_SA - b.p_MC).norm() < a.radius + b.radius;
+      }
+      ProximityCounters unplaced_count, placed_count;
+      pair.inner_spheres = nullptr;
+      pair.counters = &unplaced_count;
+      const bool unplaced = InnerSpheresOverlap(pair, offset_S);
+      pair.inner_spheres = &placed;
+      pair.counters = &placed_count;
+      EXPECT_EQ(InnerSpheresOverlap(pair, offset_S), truth) << "pose " << i << " offset " << k;
+      EXPECT_EQ(unplaced, truth) << "pose " << i << " offset " << k;
+      EXPECT_EQ(placed_count.box_tests, unplaced_count.box_tests) << i << " " << k;
+      (truth ? overlapping : apart) += 1;
+    }
+  }
+  // Both verdicts were exercised.
+  EXPECT_GT(overlapping, 60);
+  EXPECT_GT(apart, 60);
+}
+
 }  // namespace
 }  // namespace pd

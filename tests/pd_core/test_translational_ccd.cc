@@ -74,12 +74,13 @@ double DescentFirstContact(const ModelPair& pair, const Vector3& offset_S, const
                            ProximityCounters* counters) {
   double s_best = 1.0;
   bool hit = false;
-  ProbeBoxMemo probe_box(pair.X_SP, offset_S);
+  const SweepInS sweep(sweep_S);
+  SweptProbeBoxMemo probe_box(pair.X_SP, offset_S, sweep);
   DescendBvhPair<kOrder>(
       pair.P.bvh(), pair.S.bvh(),
       [&](const BvhNode& a, const BvhNode& b, double* key) {
         double hi;
-        return SweptBoxContactInterval(probe_box(a), b, sweep_S, s_best, key, &hi);
+        return SweptBoxContactInterval(probe_box(a), b, sweep, s_best, key, &hi);
       },
       [&](double lo) { return lo <= s_best; },
       [&](int ip, int is) {
