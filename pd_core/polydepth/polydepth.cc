@@ -108,6 +108,11 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   s.work_limit = options_.max_work;
   s.time_limit_us = options_.max_time_us;
   s.stopped_early = false;
+  s.look_ahead = coherent && options_.warm_start;
+  s.last_check_us = -1.0;
+  s.last_check_work = -1;
+  s.longest_step_us = 0.0;
+  s.longest_step_work = 0;
   s.landings_cut = false;
   // Bounded time: once the budget is spent and a verified answer exists, a
   // CCD under way stops too, at a point it knows free (translational_ccd.h).
