@@ -108,7 +108,6 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   s.work_limit = options_.max_work;
   s.time_limit_us = options_.max_time_us;
   s.stopped_early = false;
-  s.look_ahead = coherent && options_.warm_start;
   s.last_check_us = -1.0;
   s.last_check_work = -1;
   s.longest_step_us = 0.0;
@@ -144,6 +143,7 @@ PenetrationResult PolyDepthSolver::Solve(const Isometry3& X_WP, const Isometry3&
   };
 
   const bool warm = coherent && options_.warm_start;
+  s.look_ahead = warm;  // the budget's look-ahead (polydepth_search.h)
   // While what a budget cut from a cold query is pending (cold_probes.cc),
   // the answer may still move to another basin: no list of leaf pairs is
   // built around it. (Around a deep answer a build cost ~0.7 ms: it took

@@ -190,8 +190,8 @@ struct PolyDepthOptions {
   // at 85% of the budget (each descent and list walk asks as it goes; a
   // localisation under way completes; a warm query also stops where a step
   // as long as its longest so far would end past the 85%), leaving the rest
-  // to the answer's finish: its collision test (usually done by the search already), a
-  // pocket escape if it needs one, and its localisation if the search had
+  // to the answer's finish: its collision test (usually done by the search
+  // already), a pocket escape if it needs one, and its localisation if the search had
   // none there (the query's first answer). On the 30 mesh-tool paths at
   // 900 us: at most 891 us in one haptic_work run, 885 us in bench_pd's
   // report at d6e8a78 (919 us at 0ef5ba2; 1049 us before the 85%).
